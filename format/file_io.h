@@ -1,0 +1,18 @@
+// Whole-file reads and safe writes.
+#pragma once
+
+#include <string>
+
+#include "format/status.h"
+
+namespace srcodec {
+
+// Writes `bytes` to a temporary file in the target's folder and renames it
+// over `path`: readers never see a partial file, and on failure whatever was
+// at `path` before is left as it was.
+Status write_file_atomically(const std::string& path, const std::string& bytes);
+
+// The whole file, or a clear error (missing, unreadable, larger than max_bytes).
+StatusOr<std::string> read_file_bytes(const std::string& path, size_t max_bytes = size_t{1} << 34);
+
+}  // namespace srcodec

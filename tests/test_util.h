@@ -1,0 +1,43 @@
+// Shared helpers for the tests: paths to the sample and corpus meshes, small
+// meshes built in code, a scratch folder, and running the srcodec binary.
+#pragma once
+
+#include <string>
+
+#include "format/mesh.h"
+
+namespace srcodec::test {
+
+std::string source_path(const std::string& relative);  // inside the repository
+std::string corpus_path(const std::string& name);      // ../shared/data/meshes/name
+bool have_corpus();
+
+// A fresh folder, removed with everything in it when the object goes.
+class ScratchDir {
+ public:
+  ScratchDir();
+  ~ScratchDir();
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+  std::string file(const std::string& name) const { return path_ + "/" + name; }
+  // Writes `contents` to file(name) and returns its path.
+  std::string write(const std::string& name, const std::string& contents) const;
+
+ private:
+  std::string path_;
+};
+
+struct CommandResult {
+  int exit_code = -1;
+  std::string out, err;
+};
+// Runs the srcodec binary with `args` (shell-quoted by the caller).
+CommandResult run_srcodec(const std::string& args);
+
+// Small meshes with known answers.
+TriangleMesh tetrahedron();
+TriangleMesh unit_cube();                   // closed, 8 vertices, 12 triangles
+TriangleMesh flat_square(int n);            // open n x n grid in z = 0, 1 boundary loop
+TriangleMesh icosphere(int subdivisions, double radius);
+
+}  // namespace srcodec::test
