@@ -1,0 +1,22 @@
+// The srcodec subcommands: each registers its options on the CLI11 app and
+// runs as a function returning a Status (printed by main as one error line).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+
+#include "format/status.h"
+
+namespace srcodec {
+
+struct Command {
+  CLI::App* app;              // the subcommand, to ask whether it was given
+  std::function<Status()> run;  // runs it with the parsed options
+};
+
+Command add_info_command(CLI::App& app);
+Command add_compare_command(CLI::App& app);
+Command add_draco_command(CLI::App& app);
+
+}  // namespace srcodec
