@@ -42,8 +42,8 @@ void add_stats(JsonWriter& j, const MeshStats& s) {
 
 void print_table(const std::string& path, const MeshStats& raw, const MeshStats& clean, const CleanReport& r) {
   std::printf("%s\n", path.c_str());
-  std::printf("  %-32s %12s %12s\n", "", "as read", "cleaned");
-  auto row = [](const char* name, size_t a, size_t b) { std::printf("  %-32s %12zu %12zu\n", name, a, b); };
+  std::printf("  %-32s %16s %16s\n", "", "as read", "cleaned");
+  auto row = [](const char* name, size_t a, size_t b) { std::printf("  %-32s %16zu %16zu\n", name, a, b); };
   row("vertices", raw.vertices, clean.vertices);
   row("referenced vertices", raw.referenced_vertices, clean.referenced_vertices);
   row("faces", raw.faces, clean.faces);
@@ -57,14 +57,14 @@ void print_table(const std::string& path, const MeshStats& raw, const MeshStats&
   row("non-manifold vertices", raw.nonmanifold_vertices, clean.nonmanifold_vertices);
   row("orientation-inconsistent edges", raw.orientation_inconsistent_edges, clean.orientation_inconsistent_edges);
   row("degenerate faces", raw.degenerate_faces, clean.degenerate_faces);
-  std::printf("  %-32s %12ld %12ld\n", "Euler characteristic", raw.euler_characteristic, clean.euler_characteristic);
+  std::printf("  %-32s %16ld %16ld\n", "Euler characteristic", raw.euler_characteristic, clean.euler_characteristic);
   auto genus = [](const MeshStats& s) { return s.genus ? std::to_string(*s.genus) : std::string("n/a"); };
-  std::printf("  %-32s %12s %12s\n", "genus", genus(raw).c_str(), genus(clean).c_str());
+  std::printf("  %-32s %16s %16s\n", "genus", genus(raw).c_str(), genus(clean).c_str());
   auto kind = [](const MeshStats& s) {
-    return std::string(s.is_closed() ? "closed" : "open") + (s.is_manifold() ? " manifold" : " non-manif.");
+    return std::string(s.is_closed() ? "closed" : "open") + (s.is_manifold() ? " manifold" : " non-manifold");
   };
-  std::printf("  %-32s %12s %12s\n", "surface", kind(raw).c_str(), kind(clean).c_str());
-  std::printf("  %-32s %12.6g %12.6g\n", "bounding-box diagonal", raw.bbox_diagonal, clean.bbox_diagonal);
+  std::printf("  %-32s %16s %16s\n", "surface", kind(raw).c_str(), kind(clean).c_str());
+  std::printf("  %-32s %16.6g %16.6g\n", "bounding-box diagonal", raw.bbox_diagonal, clean.bbox_diagonal);
   std::printf("  cleaning: welded %zu coincident vertices, triangulated %zu polygons, dropped %zu degenerate "
               "and %zu duplicate faces and %zu unreferenced vertices\n",
               r.welded_vertices, r.polygons_triangulated, r.degenerate_faces, r.duplicate_faces,
