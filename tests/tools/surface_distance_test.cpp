@@ -1,5 +1,7 @@
 #include "tools/measure/surface_distance.h"
 
+#include "tests/test_util.h"
+
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -34,42 +36,7 @@ TriangleMesh unit_square() {
   return m;
 }
 
-// An icosahedron subdivided 1-to-4 `levels` times, every vertex projected
-// onto the sphere of radius `radius` centred at the origin.
-TriangleMesh icosphere(int levels, double radius) {
-  TriangleMesh m;
-  const double p = (1.0 + std::sqrt(5.0)) / 2.0;
-  m.positions = {{-1, p, 0}, {1, p, 0}, {-1, -p, 0}, {1, -p, 0}, {0, -1, p}, {0, 1, p},
-                 {0, -1, -p}, {0, 1, -p}, {p, 0, -1}, {p, 0, 1}, {-p, 0, -1}, {-p, 0, 1}};
-  m.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
-                 {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
-                 {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
-                 {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
-  for (int level = 0; level < levels; ++level) {
-    std::map<std::pair<int32_t, int32_t>, int32_t> midpoints;
-    auto midpoint = [&](int32_t a, int32_t b) {
-      const auto key = std::make_pair(std::min(a, b), std::max(a, b));
-      auto it = midpoints.find(key);
-      if (it != midpoints.end()) return it->second;
-      const auto index = static_cast<int32_t>(m.positions.size());
-      m.positions.push_back(0.5 * (m.positions[static_cast<size_t>(a)] + m.positions[static_cast<size_t>(b)]));
-      midpoints.emplace(key, index);
-      return index;
-    };
-    std::vector<std::array<int32_t, 3>> finer;
-    finer.reserve(m.triangles.size() * 4);
-    for (const auto& t : m.triangles) {
-      const int32_t ab = midpoint(t[0], t[1]), bc = midpoint(t[1], t[2]), ca = midpoint(t[2], t[0]);
-      finer.push_back({t[0], ab, ca});
-      finer.push_back({t[1], bc, ab});
-      finer.push_back({t[2], ca, bc});
-      finer.push_back({ab, bc, ca});
-    }
-    m.triangles = std::move(finer);
-  }
-  for (auto& v : m.positions) v = radius * v.normalized();
-  return m;
-}
+using test::icosphere;
 
 TriangleMesh scaled(TriangleMesh m, double factor) {
   for (auto& v : m.positions) v *= factor;
