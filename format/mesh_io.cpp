@@ -19,7 +19,8 @@
 #include <system_error>
 
 #include "format/file_io.h"
-#include "format/ply_tristrips.h"
+#include "format/off_reader.h"
+#include "format/ply_reader.h"
 #include "format/text_numbers.h"
 
 namespace srcodec {
@@ -134,16 +135,6 @@ class OpenMeshLogCapture {
   std::ostringstream errors_;
 };
 
-bool file_declares_tristrips(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string line;
-  for (int i = 0; i < 64 && std::getline(in, line); ++i) {
-    if (line.rfind("end_header", 0) == 0) return false;
-    if (line.rfind("element tristrips", 0) == 0) return true;
-  }
-  return false;
-}
-
 Status validate(const PolygonMesh& mesh) {
   for (size_t v = 0; v < mesh.positions.size(); ++v) {
     if (!mesh.positions[v].allFinite())
@@ -189,17 +180,14 @@ StatusOr<PolygonMesh> read_polygon_mesh(const std::string& path) {
   const auto size = fs::file_size(path, ec);
   if (ec) return fail(io_error("cannot read: " + ec.message()));
   if (size == 0) return fail(parse_error("file is empty (0 bytes)"));
-  {
-    auto bytes = read_file_bytes(path);
-    if (!bytes.ok()) return bytes.status();  // already names the file
-    Status s = check_text_numbers(bytes.value(), ext);
-    if (!s.ok()) return fail(s);
-  }
+  auto bytes = read_file_bytes(path);
+  if (!bytes.ok()) return bytes.status();  // already names the file
+  Status checked = check_text_numbers(bytes.value(), ext);
+  if (!checked.ok()) return fail(checked);
 
   PolygonMesh mesh;
-  if (ext == ".ply" && file_declares_tristrips(path)) {
-    // OpenMesh's PLY reader only knows `element face`; scanners often write strips.
-    Status s = read_ply_tristrips(path, &mesh);
+  if (ext == ".ply" || ext == ".off") {
+    Status s = ext == ".ply" ? read_ply(bytes.value(), &mesh) : read_off(bytes.value(), &mesh);
     if (!s.ok()) return fail(s);
   } else {
     OpenMeshLogCapture capture;

@@ -1,5 +1,6 @@
-// Mesh files in and out. Reading goes through OpenMesh's parsers (OBJ, OFF,
-// PLY ascii/binary, STL) into a raw PolygonMesh, checked for what would make
+// Mesh files in and out. Reading goes through OpenMesh's parsers (OBJ, STL)
+// and our own PLY and OFF readers (format/ply_reader.h, off_reader.h; OpenMesh's
+// crashed or hung on damaged files of those kinds) into a raw PolygonMesh, checked for what would make
 // later stages misbehave: missing or empty files, unknown formats, indices
 // out of range, non-finite coordinates, no faces.
 #pragma once

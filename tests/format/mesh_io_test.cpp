@@ -116,8 +116,8 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(BadInput{"missing.obj", nullptr, "no such file"},
                       BadInput{"mesh.xyz", "v 0 0 0\n", "unknown mesh extension"},
                       BadInput{"empty.obj", "", "empty"},
-                      BadInput{"garbage.ply", "\x01\x02\xff\xfe garbage\n\x7f", "not a readable ply"},
-                      BadInput{"garbage.off", "this is not an off file\n", "not a readable off"},
+                      BadInput{"garbage.ply", "\x01\x02\xff\xfe garbage\n\x7f", "not a PLY file"},
+                      BadInput{"garbage.off", "this is not an off file\n", "not an OFF file"},
                       BadInput{"range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "vertex index 9"},
                       BadInput{"nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n", "not a finite number"},
                       BadInput{"inf.off", "OFF\n3 1 0\n0 0 0\ninf 0 0\n0 1 0\n3 0 1 2\n", "not a finite number"},
@@ -125,6 +125,8 @@ INSTANTIATE_TEST_SUITE_P(
                       BadInput{"inf.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                                "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
                                "0 0 0\n1 0 0\n0 -inf 0\n3 0 1 2\n", "line 12"},
+                      BadInput{"huge.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n4294967295 0 1 2\n", "line 6"},
+                      BadInput{"counts.off", "OFF\n49999999999999999 1 0\n0 0 0\n", "only 1 lines follow"},
                       BadInput{"nofaces.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n", "no faces"},
                       BadInput{"flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n", "degenerate"}),
     [](const auto& test_param) {

@@ -1,10 +1,9 @@
-#include "format/ply_tristrips.h"
+#include "format/ply_reader.h"
 
 #include <algorithm>
 #include <cstring>
 #include <sstream>
 
-#include "format/file_io.h"
 
 namespace srcodec {
 namespace {
@@ -134,8 +133,7 @@ void add_strip(const std::vector<int64_t>& strip, PolygonMesh* mesh) {
 
 }  // namespace
 
-Status read_ply_tristrips(const std::string& path, PolygonMesh* mesh) {
-  SRCODEC_ASSIGN_OR_RETURN(std::string bytes, read_file_bytes(path));
+Status read_ply(const std::string& bytes, PolygonMesh* mesh) {
   Encoding enc = Encoding::kAscii;
   std::vector<Element> elements;
   size_t body = 0;
@@ -163,7 +161,7 @@ Status read_ply_tristrips(const std::string& path, PolygonMesh* mesh) {
         }
         double count = 0;
         SRCODEC_RETURN_IF_ERROR(in.read(prop.count_type, &count));
-        if (count < 0 || count > static_cast<double>(in.remaining_bytes()) + 1e6)
+        if (count < 0 || count > static_cast<double>(in.remaining_bytes()))
           return parse_error("element '" + e.name + "' item " + std::to_string(i) + " has an impossible list length");
         list.resize(static_cast<size_t>(count));
         for (auto& x : list) {
