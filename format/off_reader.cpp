@@ -1,5 +1,7 @@
 #include "format/off_reader.h"
 
+#include <cmath>
+#include <cstdlib>
 #include <sstream>
 #include <vector>
 
@@ -27,6 +29,14 @@ std::vector<Line> content_lines(const std::string& bytes) {
 
 Status at(const Line& line, const std::string& what) {
   return parse_error("line " + std::to_string(line.number) + ": " + what);
+}
+
+// The whole word is one finite number.
+bool to_finite(const std::string& word, double* out) {
+  const char* begin = word.c_str();
+  char* end = nullptr;
+  *out = std::strtod(begin, &end);
+  return end != begin && *end == '\0' && std::isfinite(*out);
 }
 
 bool to_int(const std::string& word, long long* out) {
@@ -67,7 +77,9 @@ Status read_off(const std::string& bytes, PolygonMesh* mesh) {
     const Line& line = lines[next++];
     if (line.words.size() < 3) return at(line, "vertex needs 3 coordinates");
     Eigen::Vector3d p;
-    for (int k = 0; k < 3; ++k) p[k] = std::stod(line.words[k]);  // finite numbers: checked by text_numbers
+    for (int k = 0; k < 3; ++k) {
+      if (!to_finite(line.words[k], &p[k])) return at(line, "'" + line.words[k] + "' is not a finite number");
+    }
     mesh->positions.push_back(p);
   }
   std::vector<int32_t> face;

@@ -68,25 +68,6 @@ Status check_text_numbers(const std::string& bytes, const std::string& ext) {
     if (bytes.rfind("solid", 0) != 0 || bytes.find("facet") == std::string::npos) return ok_status();
     return check_keyword_lines(bytes, "vertex", 3);
   }
-  if (ext == ".off") {
-    // Header: "OFF"-like keyword line (may also hold the counts), then counts.
-    std::istringstream in(bytes);
-    std::string line;
-    size_t n = 0;
-    bool keyword_seen = false;
-    while (std::getline(in, line)) {
-      ++n;
-      const auto words = split(line.substr(0, line.find('#')));
-      if (words.empty()) continue;
-      if (!keyword_seen && words[0].find("OFF") != std::string::npos) {
-        keyword_seen = true;
-        if (words.size() > 1) break;  // counts on the keyword line
-        continue;
-      }
-      break;  // the counts line
-    }
-    return check_numeric_body(bytes, n);
-  }
   if (ext == ".ply") {
     const size_t end = bytes.find("end_header");
     if (end == std::string::npos || bytes.find("format ascii") > end) return ok_status();

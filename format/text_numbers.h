@@ -1,8 +1,8 @@
-// A pass over text mesh files (OBJ, OFF, ascii PLY, ascii STL) before they
-// reach OpenMesh's parsers, which skip a vertex line they cannot read (OBJ:
-// later indices then point at the wrong vertices) or read a stream that has
-// failed as zeros (OFF, PLY): both would be silent wrong results. Here every
-// coordinate must be a finite number, and the error names the line.
+// A pass over text mesh files (OBJ, ascii PLY, ascii STL) before they are
+// parsed. OpenMesh's OBJ reader skips a vertex line it cannot read, so later
+// indices point at the wrong vertices: a silent wrong result. Our PLY reader
+// would only say it ran out of numbers. Here every coordinate must be a
+// finite number, and the error names the line.
 #pragma once
 
 #include <string>
@@ -11,7 +11,8 @@
 
 namespace srcodec {
 
-// `ext` is ".obj", ".off", ".ply" or ".stl"; binary PLY/STL pass untouched.
+// `ext` is ".obj", ".ply" or ".stl"; binary PLY/STL and OFF (whose reader
+// checks its own numbers) pass untouched.
 Status check_text_numbers(const std::string& bytes, const std::string& ext);
 
 }  // namespace srcodec
