@@ -21,4 +21,11 @@ double bounding_box_diagonal(const std::vector<Eigen::Vector3d>& positions) {
   return (hi - lo).norm();
 }
 
+void append_mesh(TriangleMesh& to, const TriangleMesh& from) {
+  const int32_t offset = static_cast<int32_t>(to.positions.size());
+  to.positions.insert(to.positions.end(), from.positions.begin(), from.positions.end());
+  to.triangles.reserve(to.triangles.size() + from.triangles.size());
+  for (const auto& t : from.triangles) to.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+}
+
 }  // namespace srcodec

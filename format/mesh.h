@@ -37,4 +37,8 @@ PolygonMesh to_polygon_mesh(const TriangleMesh& mesh);
 // Axis-aligned bounding-box diagonal over all positions (0 for none).
 double bounding_box_diagonal(const std::vector<Eigen::Vector3d>& positions);
 
+// Appends `from`'s vertices and triangles to `to` (indices shifted): joins
+// disjoint pieces into one mesh.
+void append_mesh(TriangleMesh& to, const TriangleMesh& from);
+
 }  // namespace srcodec

@@ -21,47 +21,11 @@
 #include <nanoflann.hpp>
 #include <string>
 
+#include "remesh/adjacency.h"
 #include "remesh/density.h"
 
 namespace srcodec {
 namespace {
-
-// Vertex neighbours through mesh edges as compressed rows: the neighbours of v
-// are neighbors[offsets[v] .. offsets[v + 1]), sorted, each once.
-struct Adjacency {
-  std::vector<int32_t> offsets;
-  std::vector<int32_t> neighbors;
-};
-
-Adjacency build_adjacency(const TriangleMesh& mesh) {
-  const size_t n = mesh.positions.size();
-  Adjacency adj;
-  adj.offsets.assign(n + 1, 0);
-  for (const auto& t : mesh.triangles)
-    for (int32_t v : t) adj.offsets[v + 1] += 2;
-  for (size_t v = 0; v < n; ++v) adj.offsets[v + 1] += adj.offsets[v];
-  std::vector<int32_t> fill(adj.offsets.begin(), adj.offsets.end() - 1);
-  adj.neighbors.resize(adj.offsets[n]);
-  for (const auto& t : mesh.triangles) {
-    for (int c = 0; c < 3; ++c) {
-      adj.neighbors[fill[t[c]]++] = t[(c + 1) % 3];
-      adj.neighbors[fill[t[c]]++] = t[(c + 2) % 3];
-    }
-  }
-  // Sort and deduplicate each row in place, compacting as we go.
-  int32_t out = 0;
-  for (size_t v = 0; v < n; ++v) {
-    auto first = adj.neighbors.begin() + adj.offsets[v], last = adj.neighbors.begin() + adj.offsets[v + 1];
-    std::sort(first, last);
-    last = std::unique(first, last);
-    adj.offsets[v] = out;
-    for (auto it = first; it != last; ++it)
-      if (*it != static_cast<int32_t>(v)) adj.neighbors[out++] = *it;  // a repeated corner is no edge
-  }
-  adj.offsets[n] = out;
-  adj.neighbors.resize(out);
-  return adj;
-}
 
 Status check_input(const TriangleMesh& mesh, const LbgOptions& options) {
   const size_t n = mesh.positions.size();
@@ -100,9 +64,9 @@ Status check_connected(const Adjacency& adj) {
   seen[0] = 1;
   for (size_t head = 0; head < queue.size(); ++head)
     for (int32_t i = adj.offsets[queue[head]]; i < adj.offsets[queue[head] + 1]; ++i)
-      if (!seen[adj.neighbors[i]]) {
-        seen[adj.neighbors[i]] = 1;
-        queue.push_back(adj.neighbors[i]);
+      if (!seen[adj.items[i]]) {
+        seen[adj.items[i]] = 1;
+        queue.push_back(adj.items[i]);
       }
   if (queue.size() == n) return ok_status();
   const size_t lost = std::find(seen.begin(), seen.end(), 0) - seen.begin();
@@ -197,7 +161,7 @@ size_t grow_from_site(const Adjacency& adj, const std::vector<int32_t>& cell_of,
   for (size_t head = 0; head < queue.size(); ++head) {
     const int32_t v = queue[head];
     for (int32_t i = adj.offsets[v]; i < adj.offsets[v + 1]; ++i) {
-      const int32_t w = adj.neighbors[i];
+      const int32_t w = adj.items[i];
       if (cell_of[w] == k && !reached[w]) {  // only this cell's task touches reached[] of its vertices
         reached[w] = 1;
         queue.push_back(w);
@@ -229,7 +193,7 @@ OrphanPieces orphan_pieces(const Adjacency& adj, const std::vector<int32_t>& cel
     for (size_t head = pieces.offsets.back(); head < pieces.vertices.size(); ++head) {
       const int32_t v = pieces.vertices[head];
       for (int32_t i = adj.offsets[v]; i < adj.offsets[v + 1]; ++i) {
-        const int32_t w = adj.neighbors[i];
+        const int32_t w = adj.items[i];
         if (orphan[w] && pieces.piece_of[w] < 0 && cell_of[w] == cell_of[seed]) {
           pieces.piece_of[w] = p;
           pieces.vertices.push_back(w);
@@ -249,8 +213,8 @@ int32_t majority_neighbour(const Adjacency& adj, const OrphanPieces& pieces, con
   for (int32_t i = pieces.offsets[p]; i < pieces.offsets[p + 1]; ++i) {
     const int32_t v = pieces.vertices[i];
     for (int32_t j = adj.offsets[v]; j < adj.offsets[v + 1]; ++j) {
-      const int32_t q = pieces.piece_of[adj.neighbors[j]];
-      if (q < 0 || (q != p && settled[q])) votes.push_back(cell_of[adj.neighbors[j]]);
+      const int32_t q = pieces.piece_of[adj.items[j]];
+      if (q < 0 || (q != p && settled[q])) votes.push_back(cell_of[adj.items[j]]);
     }
   }
   std::sort(votes.begin(), votes.end());
@@ -520,7 +484,7 @@ double voronoi_energy(const TriangleMesh& mesh, const std::vector<double>& densi
 
 StatusOr<VoronoiCells> lbg_sites(const TriangleMesh& mesh, const LbgOptions& options, LbgReport* report) {
   SRCODEC_RETURN_IF_ERROR(check_input(mesh, options));
-  const Context ctx{mesh.positions, vertex_density(mesh), build_adjacency(mesh)};
+  const Context ctx{mesh.positions, vertex_density(mesh), vertex_neighbors(mesh.positions.size(), mesh.triangles)};
   SRCODEC_RETURN_IF_ERROR(check_connected(ctx.adjacency));
   if (report) *report = LbgReport{};
 
