@@ -1,7 +1,6 @@
-// The remesher's result and the wavelet stage's input: a base mesh refined
-// by 1-to-4 splits (adaptively, closed conformingly), one position per vertex.
-// The remesher itself (Kammoun, Payan, Antonini) is not built yet; this is
-// the shape of its output that the later stages build on.
+// The remesher's result and the wavelet stage's input: a base mesh whose
+// triangles are refined by 1-to-4 splits (adaptively, balanced, closed
+// conformingly by green bisections), with one position per vertex.
 #pragma once
 
 #include <array>
@@ -9,15 +8,26 @@
 #include <vector>
 
 #include "format/mesh.h"
+#include "remesh/hierarchy.h"
 
 namespace srcodec {
 
 struct SemiRegularMesh {
-  TriangleMesh base;                             // level 0: sites picked on the input
-  std::vector<Eigen::Vector3d> positions;        // every vertex of every level; base vertices first
-  std::vector<uint8_t> level;                    // level at which each vertex appears
-  std::vector<std::array<int32_t, 2>> parent_edge;  // endpoints of the edge a vertex splits; {-1,-1} for base
-  std::vector<std::vector<std::array<int32_t, 3>>> level_triangles;  // the watertight mesh at each level
+  // Level 0. Base vertex b is vertex b of the hierarchy and of `positions`.
+  TriangleMesh base;
+  // The split quadtree of every base triangle, each vertex's level and parent
+  // edge, and the watertight mesh of every level (hierarchy.level_triangles).
+  TriangleHierarchy hierarchy;
+  // Per hierarchy vertex: its position. Voronoi sites are input vertices, so
+  // every position is a vertex of the (oversampled) input the remesher ran
+  // on, except where the input ran out near a new vertex (then it is the
+  // midpoint of its parent edge; RefineLevelReport counts those).
+  std::vector<Eigen::Vector3d> positions;
+  int32_t levels = 0;  // the finest level built (hierarchy.max_level() may be lower if nothing was split)
+
+  // The mesh of `level` as a plain triangle mesh: the vertices it uses (in
+  // increasing vertex id order) and its triangles re-indexed to them.
+  TriangleMesh level_mesh(int32_t level) const;
 };
 
 }  // namespace srcodec

@@ -1,0 +1,84 @@
+// Oversampling by Butterfly or Loop subdivision (paper §IV). OpenMesh's
+// uniform subdividers do the work; this file only converts meshes and checks.
+#include "remesh/oversample.h"
+
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <OpenMesh/Tools/Subdivider/Uniform/LoopT.hh>
+#include <OpenMesh/Tools/Subdivider/Uniform/ModifiedButterFlyT.hh>
+#include <string>
+
+namespace srcodec {
+namespace {
+
+struct DoubleTraits : public OpenMesh::DefaultTraits {
+  using Point = OpenMesh::Vec3d;
+  using Normal = OpenMesh::Vec3d;
+};
+using OmMesh = OpenMesh::TriMesh_ArrayKernelT<DoubleTraits>;
+
+StatusOr<OmMesh> to_openmesh(const TriangleMesh& mesh) {
+  OmMesh om;
+  om.reserve(mesh.positions.size(), 3 * mesh.triangles.size() / 2, mesh.triangles.size());
+  for (const Eigen::Vector3d& p : mesh.positions) om.add_vertex(OmMesh::Point(p.x(), p.y(), p.z()));
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto& tri = mesh.triangles[t];
+    for (int32_t v : tri)
+      if (v < 0 || static_cast<size_t>(v) >= mesh.positions.size())
+        return invalid_mesh("oversample: triangle " + std::to_string(t) + " uses vertex " + std::to_string(v) +
+                            ", outside the " + std::to_string(mesh.positions.size()) + " vertices");
+    const OmMesh::FaceHandle f = om.add_face(OmMesh::VertexHandle(tri[0]), OmMesh::VertexHandle(tri[1]),
+                                             OmMesh::VertexHandle(tri[2]));
+    if (!f.is_valid())
+      return invalid_mesh("oversample: triangle " + std::to_string(t) +
+                          " makes the mesh non-manifold or inconsistently oriented; split it into manifold "
+                          "components first");
+  }
+  return om;
+}
+
+}  // namespace
+
+StatusOr<TriangleMesh> oversample(const TriangleMesh& mesh, OversampleScheme scheme, int steps) {
+  if (steps < 0 || steps > 3)
+    return invalid_argument("oversample: " + std::to_string(steps) + " steps asked; use 0 to 3");
+  if (steps == 0) return mesh;
+  SRCODEC_ASSIGN_OR_RETURN(OmMesh om, to_openmesh(mesh));
+  bool done = false;
+  if (scheme == OversampleScheme::kButterfly) {
+    OpenMesh::Subdivider::Uniform::ModifiedButterflyT<OmMesh, double> butterfly;
+    done = butterfly.attach(om) && butterfly(static_cast<size_t>(steps));
+    butterfly.detach();
+  } else {
+    OpenMesh::Subdivider::Uniform::LoopT<OmMesh, double> loop;
+    done = loop.attach(om) && loop(static_cast<size_t>(steps));
+    loop.detach();
+  }
+  if (!done) return internal_error("oversample: OpenMesh's subdivider failed");
+  TriangleMesh out;
+  out.positions.reserve(om.n_vertices());
+  for (const auto vh : om.vertices()) {
+    const OmMesh::Point& p = om.point(vh);
+    out.positions.emplace_back(p[0], p[1], p[2]);
+  }
+  out.triangles.reserve(om.n_faces());
+  for (const auto fh : om.faces()) {
+    std::array<int32_t, 3> tri{};
+    int c = 0;
+    for (const auto vh : om.fv_range(fh)) tri[c++] = vh.idx();
+    out.triangles.push_back(tri);
+  }
+  return out;
+}
+
+int auto_oversample_steps(size_t input_vertices, size_t finest_vertices, double min_ratio, size_t max_vertices) {
+  int steps = 0;
+  double v = static_cast<double>(input_vertices);
+  // Each 1-to-4 step roughly quadruples the vertex count (V' = V + E ~ 4V).
+  while (steps < 3 && v < min_ratio * static_cast<double>(finest_vertices) && 4.0 * v <= max_vertices) {
+    v *= 4.0;
+    ++steps;
+  }
+  return steps;
+}
+
+}  // namespace srcodec

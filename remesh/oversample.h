@@ -1,0 +1,34 @@
+// Oversampling of inputs that are coarse for the requested levels (Kammoun,
+// Payan, Antonini §IV): the Voronoi cells are built on the input's vertices,
+// and Euclidean cells only follow the surface when the sampling is dense
+// compared with the semi-regular output, so a coarse input is first
+// subdivided, with the interpolating Butterfly scheme (Dyn, Levin, Gregory
+// 1990, in Zorin's modified form) or, for the paper's comparison in Fig. 6,
+// the approximating Loop scheme.
+#pragma once
+
+#include <cstddef>
+
+#include "format/mesh.h"
+#include "format/status.h"
+
+namespace srcodec {
+
+enum class OversampleScheme { kButterfly, kLoop };
+
+// `steps` rounds (0..3) of 1-to-4 subdivision of one manifold, consistently
+// oriented component (an element of split_into_manifold_components's result).
+// Butterfly keeps every input vertex where it was (vertex i of the input is
+// vertex i of the output); Loop moves them. Boundaries use the schemes'
+// boundary rules (4-point / cubic B-spline), so boundary loops stay loops.
+// Errors: steps outside 0..3, or a mesh OpenMesh cannot take as a manifold.
+StatusOr<TriangleMesh> oversample(const TriangleMesh& mesh, OversampleScheme scheme, int steps);
+
+// The `--oversample auto` rule: the fewest steps (at most 3) after which the
+// input has at least `min_ratio` vertices per vertex of the finest uniform
+// level (`finest_vertices`), without passing `max_vertices` (the step that
+// would pass it is not taken).
+int auto_oversample_steps(size_t input_vertices, size_t finest_vertices, double min_ratio = 1.0,
+                          size_t max_vertices = 8000000);
+
+}  // namespace srcodec

@@ -1,0 +1,610 @@
+// Semi-regular refinement with Lloyd relaxation (Kammoun, Payan, Antonini
+// §III-B) and the adaptive criterion of Eqs. 4-5.
+//
+// Choices the paper leaves open, and why:
+//  - Voronoi cells during refinement (Eq. 1) use the Euclidean distance, as
+//    in the paper, but an input vertex only considers the sites near it on
+//    the base domain: the corners of the semi-regular triangle its
+//    parameterization falls in, and their neighbours. A global nearest site
+//    would jump across thin parts (two sides of an ear) once the sites are
+//    dense; the parameterization knows which side a vertex is on.
+//  - A site's new position is the input vertex of its cell nearest the
+//    cell's density-weighted centroid (Eq. 2 and §II-C), applied site after
+//    site (Gauss-Seidel) so the fold test sees its neighbours' current
+//    positions. A move that would flip or flatten a triangle of the current
+//    level around the site is refused.
+//  - A site's own input vertex always stays in its cell, so f(s) >= 1 and
+//    two sites never share an input vertex.
+#include "remesh/refine.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <nanoflann.hpp>
+
+#include "remesh/adjacency.h"
+#include "remesh/density.h"
+
+namespace srcodec {
+namespace {
+
+struct PointCloud {
+  const std::vector<Eigen::Vector3d>& points;
+  size_t kdtree_get_point_count() const { return points.size(); }
+  double kdtree_get_pt(size_t i, size_t dim) const { return points[i][static_cast<Eigen::Index>(dim)]; }
+  template <class Box>
+  bool kdtree_get_bbox(Box&) const { return false; }
+};
+using PointTree =
+    nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointCloud>, PointCloud, 3, uint32_t>;
+
+std::vector<Eigen::Vector3d> unit_vertex_normals(const TriangleMesh& mesh) {
+  std::vector<Eigen::Vector3d> n(mesh.positions.size(), Eigen::Vector3d::Zero());
+  for (const auto& t : mesh.triangles) {
+    const Eigen::Vector3d fn =
+        (mesh.positions[t[1]] - mesh.positions[t[0]]).cross(mesh.positions[t[2]] - mesh.positions[t[0]]);
+    for (int32_t v : t) n[v] += fn;
+  }
+  for (Eigen::Vector3d& x : n) {
+    const double len = x.norm();
+    if (len > 0.0) x /= len;
+  }
+  return n;
+}
+
+// Per vertex: 1 when it is on an edge that only one triangle uses.
+std::vector<char> boundary_vertices(size_t n, const std::vector<std::array<int32_t, 3>>& triangles) {
+  std::vector<std::pair<int32_t, int32_t>> edges;
+  edges.reserve(3 * triangles.size());
+  for (const auto& t : triangles)
+    for (int c = 0; c < 3; ++c) edges.emplace_back(std::minmax(t[c], t[(c + 1) % 3]));
+  std::sort(edges.begin(), edges.end());
+  std::vector<char> on(n, 0);
+  for (size_t i = 0; i < edges.size();) {
+    size_t j = i;
+    while (j < edges.size() && edges[j] == edges[i]) ++j;
+    if (j - i == 1) on[edges[i].first] = on[edges[i].second] = 1;
+    i = j;
+  }
+  return on;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+class Refiner {
+ public:
+  Refiner(const TriangleMesh& input, const BaseMesh& base, const RefineOptions& options, TriangleHierarchy hierarchy)
+      : input_(input),
+        base_(base),
+        options_(options),
+        h_(std::move(hierarchy)),
+        points_(input.positions),
+        param_(base.param),
+        density_(vertex_density(input)),
+        normals_(unit_vertex_normals(input)),
+        embedded_(embed()),
+        cloud_{embedded_},
+        tree_(3, cloud_, nanoflann::KDTreeSingleIndexAdaptorParams(10)),
+        input_cloud_{input.positions},
+        input_tree_(3, input_cloud_, nanoflann::KDTreeSingleIndexAdaptorParams(10)),
+        base_vertex_faces_(vertex_triangles(base.mesh.positions.size(), base.mesh.triangles)),
+        site_of_(input.positions.size(), -1),
+        input_on_boundary_(boundary_vertices(input.positions.size(), input.triangles)) {
+    tree_.buildIndex();
+    input_tree_.buildIndex();
+    build_face_points();
+    anchor_ = base.input_vertex;
+    for (size_t v = 0; v < anchor_.size(); ++v) site_of_[anchor_[v]] = static_cast<int32_t>(v);
+  }
+
+  Status run(std::vector<RefineLevelReport>* report) {
+    // Level 0: the base mesh's own cells, for the first selection.
+    int32_t level = 0;
+    std::vector<int32_t> cell_of = assign(level);
+    for (int step = 0; step < options_.levels; ++step) {
+      const auto start = std::chrono::steady_clock::now();
+      RefineLevelReport lr;
+      lr.level = level + 1;
+      const std::vector<int32_t> selected = select(level, cell_of);
+      lr.selected = selected.size();
+      if (selected.empty()) {
+        progress("level " + std::to_string(level + 1) + ": no triangle passes the threshold; refinement stops");
+        break;
+      }
+      const size_t nodes_before = h_.nodes().size();
+      std::vector<int32_t> new_vertices;
+      for (int32_t node : selected) h_.split(node, &new_vertices);
+      lr.split = (h_.nodes().size() - nodes_before) / 4;
+      ++level;
+      anchor_.resize(h_.vertex_count(), -1);
+      build_level_mesh(level);  // new vertices need to know whether they are on the boundary
+      const size_t midpoints_before = midpoint_vertices_;
+      for (int32_t v : new_vertices) SRCODEC_RETURN_IF_ERROR(place_new_vertex(v));
+      lr.midpoint_vertices = midpoint_vertices_ - midpoints_before;
+      cell_of = relax(level, lr);
+      lr.vertices = h_.level_vertex_count(level);
+      lr.triangles = triangles_.size();
+      lr.seconds = seconds_since(start);
+      progress("level " + std::to_string(level) + ": " + std::to_string(lr.vertices) + " vertices, " +
+               std::to_string(lr.triangles) + " triangles, " + std::to_string(lr.lloyd_iterations) +
+               " Lloyd steps, " + std::to_string(lr.seconds) + " s");
+      if (report) report->push_back(lr);
+    }
+    return ok_status();
+  }
+
+  RefineResult result() && {
+    RefineResult r{std::move(h_), {}, std::move(anchor_)};
+    r.positions.reserve(r.anchor.size());
+    for (int32_t& a : r.anchor) {
+      r.positions.push_back(points_[a]);
+      if (a >= static_cast<int32_t>(input_.positions.size())) a = -1;
+    }
+    return r;
+  }
+
+ private:
+  void progress(const std::string& line) const {
+    if (options_.progress) options_.progress(line);
+  }
+
+  Eigen::Vector3d on_base(const ParamPoint& p) const {
+    const auto& t = base_.mesh.triangles[p.face];
+    return p.bary[0] * base_.mesh.positions[t[0]] + p.bary[1] * base_.mesh.positions[t[1]] +
+           p.bary[2] * base_.mesh.positions[t[2]];
+  }
+
+  // Each input vertex's image on the base mesh: distances between these are
+  // distances on the base domain (exact inside a face, a chord across edges).
+  std::vector<Eigen::Vector3d> embed() const {
+    std::vector<Eigen::Vector3d> out(input_.positions.size());
+    for (size_t i = 0; i < out.size(); ++i) out[i] = on_base(param_[i]);
+    return out;
+  }
+
+  void build_face_points() {
+    const size_t faces = base_.mesh.triangles.size();
+    face_points_.offsets.assign(faces + 1, 0);
+    for (const ParamPoint& p : base_.param) ++face_points_.offsets[p.face + 1];
+    for (size_t f = 0; f < faces; ++f) face_points_.offsets[f + 1] += face_points_.offsets[f];
+    std::vector<int32_t> fill(face_points_.offsets.begin(), face_points_.offsets.end() - 1);
+    face_points_.items.resize(base_.param.size());
+    for (size_t i = 0; i < base_.param.size(); ++i)
+      face_points_.items[fill[param_[i].face]++] = static_cast<int32_t>(i);
+  }
+
+  // Base faces that share a corner with `face`: the part of the base domain
+  // a new vertex of `face` may take its input vertex from.
+  bool near_face(int32_t face, int32_t other) const {
+    if (face == other) return true;
+    for (int32_t c : base_.mesh.triangles[face])
+      for (const int32_t* f = base_vertex_faces_.begin(c); f != base_vertex_faces_.end(c); ++f)
+        if (*f == other) return true;
+    return false;
+  }
+
+  // Starts new vertex v at the free input vertex nearest (on the base domain)
+  // to v's dyadic point, the midpoint of its parent edge (§III-B, Fig. 4b-c).
+  Status place_new_vertex(int32_t v) {
+    const ParamPoint p = h_.nominal_param(v);
+    const Eigen::Vector3d target = on_base(p);
+    // Among the kInit free vertices nearest on the base domain, take the one
+    // nearest in space to the parent edge's midpoint. The domain picks the
+    // right sheet of the surface; space corrects the parameterization's
+    // stretch, which over large base triangles shifts dyadic midpoints by
+    // more than a fine level's spacing and folds triangles.
+    constexpr size_t kInit = 8;
+    const auto edge = h_.parent_edge(v);
+    const Eigen::Vector3d midpoint =
+        0.5 * (points_[anchor_[edge[0]]] + points_[anchor_[edge[1]]]);
+    for (size_t k : {64, 512, 4096}) {
+      k = std::min(k, embedded_.size());
+      std::vector<uint32_t> idx(k);
+      std::vector<double> dist(k);
+      k = tree_.knnSearch(target.data(), k, idx.data(), dist.data());
+      int32_t best = -1;
+      double best_d = std::numeric_limits<double>::infinity();
+      size_t seen = 0;
+      for (size_t j = 0; j < k && seen < kInit; ++j) {
+        const int32_t i = static_cast<int32_t>(idx[j]);
+        if (site_of_[i] >= 0 || !allowed(v, i) || !near_face(p.face, param_[i].face)) continue;
+        ++seen;
+        const double d = (points_[i] - midpoint).squaredNorm();
+        if (d < best_d) {
+          best_d = d;
+          best = i;
+        }
+      }
+      if (best >= 0) return take(v, best);
+      if (k == embedded_.size()) break;
+    }
+    // The nearest points are all taken (the parameterization crowds them
+    // elsewhere): widen ring by ring over the base faces around `face`.
+    std::vector<int32_t> ring{p.face}, next;
+    std::vector<char> seen(base_.mesh.triangles.size(), 0);
+    seen[p.face] = 1;
+    // Three rings out, a point is no longer near the edge: stop there rather
+    // than scan the whole component for every vertex.
+    for (int rings = 0; rings < 3 && !ring.empty(); ++rings) {
+      int32_t best = -1;
+      double best_d = std::numeric_limits<double>::infinity();
+      for (int32_t f : ring)
+        for (const int32_t* i = face_points_.begin(f); i != face_points_.end(f); ++i) {
+          const double d = (embedded_[*i] - target).squaredNorm();
+          if (site_of_[*i] < 0 && allowed(v, *i) && (d < best_d || (d == best_d && *i < best))) {
+            best_d = d;
+            best = *i;
+          }
+        }
+      if (best >= 0) return take(v, best);
+      next.clear();
+      for (int32_t f : ring)
+        for (int32_t c : base_.mesh.triangles[f])
+          for (const int32_t* g = base_vertex_faces_.begin(c); g != base_vertex_faces_.end(c); ++g)
+            if (!seen[*g]) {
+              seen[*g] = 1;
+              next.push_back(*g);
+            }
+      ring.swap(next);
+    }
+    // No input vertex is left near the edge: the input is locally too coarse
+    // for this level. The new vertex goes to its parent edge's midpoint, a
+    // point that is not an input vertex (counted in the level report).
+    Eigen::Vector3d normal = normals_[anchor_[edge[0]]] + normals_[anchor_[edge[1]]];
+    if (normal.norm() > 0.0) normal.normalize();
+    const int32_t i = add_point(midpoint, p, normal, site_on_boundary_[v]);
+    ++midpoint_vertices_;
+    return take(v, i);
+  }
+
+  Status take(int32_t v, int32_t i) {
+    anchor_[v] = i;
+    site_of_[i] = v;
+    return ok_status();
+  }
+
+  // Eq. 1 restricted to the sites near each input vertex on the base domain.
+  // Each vertex is independent: the result does not depend on threads.
+  std::vector<int32_t> assign(int32_t level) {
+    build_level_mesh(level);
+    return reassign(level);
+  }
+
+  // The mesh of `level`, its adjacency, and which of its vertices lie on its
+  // boundary (an edge used by one triangle).
+  void build_level_mesh(int32_t level) {
+    triangles_ = h_.level_triangles(level);
+    const size_t n = static_cast<size_t>(h_.vertex_count());
+    neighbors_ = vertex_neighbors(n, triangles_);
+    around_ = vertex_triangles(n, triangles_);
+    site_on_boundary_ = boundary_vertices(n, triangles_);
+    // The coarser levels' meshes too: sites of every level move, and each
+    // level's mesh must stay unfolded, not only the finest.
+    coarse_triangles_.resize(level);
+    coarse_around_.resize(level);
+    for (int32_t k = 0; k < level; ++k) {
+      coarse_triangles_[k] = h_.level_triangles(k);
+      coarse_around_[k] = vertex_triangles(n, coarse_triangles_[k]);
+    }
+  }
+
+  // Boundary sites stay on the input's boundary and interior sites inside,
+  // or the boundary would shrink and fold: a site may only sit on an input
+  // vertex of its own kind.
+  bool allowed(int32_t site, int32_t i) const { return site_on_boundary_[site] == input_on_boundary_[i]; }
+
+  std::vector<int32_t> reassign(int32_t level) const {
+    std::vector<int32_t> cell_of(points_.size(), -1);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, cell_of.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t i = r.begin(); i != r.end(); ++i) {
+        if (site_of_[i] >= 0 && anchor_[site_of_[i]] == static_cast<int32_t>(i)) {
+          cell_of[i] = site_of_[i];
+          continue;
+        }
+        if (i >= input_.positions.size()) continue;  // a point off the input no site holds: in no cell (-1)
+        const int32_t node = h_.locate(param_[i], level);
+        const Eigen::Vector3d& x = points_[i];
+        int32_t best = -1;
+        double best_d = std::numeric_limits<double>::infinity();
+        auto consider = [&](int32_t s) {
+          const double d = (points_[anchor_[s]] - x).squaredNorm();
+          if (d < best_d || (d == best_d && s < best)) {
+            best_d = d;
+            best = s;
+          }
+        };
+        for (int32_t c : h_.nodes()[node].v) {
+          consider(c);
+          for (const int32_t* s = neighbors_.begin(c); s != neighbors_.end(c); ++s) consider(*s);
+        }
+        cell_of[i] = best;
+      }
+    });
+    return cell_of;
+  }
+
+  // Lloyd relaxation over the sites of all levels (§III-B). Returns the
+  // final cells, which Eqs. 4-5 use to select the next level's splits.
+  std::vector<int32_t> relax(int32_t level, RefineLevelReport& lr) {
+    std::vector<int32_t> cell_of = assign(level);
+    const size_t sites = static_cast<size_t>(h_.vertex_count());
+    for (int it = 0; it < options_.max_lloyd_iterations; ++it) {
+      const Adjacency members = cells(cell_of, sites);
+      size_t moved = 0;
+      for (size_t s = 0; s < sites; ++s) {
+        const int32_t row = static_cast<int32_t>(s);
+        if (members.begin(row) == members.end(row)) continue;  // not in this level's mesh
+        Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+        double mass = 0.0;
+        for (const int32_t* i = members.begin(row); i != members.end(row); ++i) {
+          if (!allowed(row, *i)) continue;  // a boundary site relaxes along the boundary
+          sum += density_[*i] * points_[*i];
+          mass += density_[*i];
+        }
+        if (!(mass > 0.0)) continue;
+        const Eigen::Vector3d centroid = sum / mass;
+        int32_t best = anchor_[s];
+        double best_d = (points_[best] - centroid).squaredNorm();
+        for (const int32_t* i = members.begin(row); i != members.end(row); ++i) {
+          const double d = (points_[*i] - centroid).squaredNorm();
+          if (allowed(row, *i) && (d < best_d || (d == best_d && *i < best))) {
+            best_d = d;
+            best = *i;
+          }
+        }
+        if (best == anchor_[s]) continue;
+        if (!keeps_orientation(row, best)) {
+          ++lr.refused_folds;
+          continue;
+        }
+        site_of_[anchor_[s]] = -1;
+        anchor_[s] = best;
+        site_of_[best] = row;
+        ++moved;
+      }
+      lr.moves += moved;
+      lr.lloyd_iterations = it + 1;
+      cell_of = reassign(level);
+      if (static_cast<double>(moved) < options_.min_moved_fraction * static_cast<double>(sites)) break;
+    }
+    const Adjacency members = cells(cell_of, sites);
+    for (size_t s = 0; s < sites; ++s)
+      if (members.offsets[s + 1] - members.offsets[s] == 1) ++lr.empty_cells;
+    untangle(lr);
+    for (const auto& tri : triangles_) lr.folded_triangles += folded(tri, -1, -1);
+    for (const auto& level_tris : coarse_triangles_)
+      for (const auto& tri : level_tris) lr.coarse_folded_triangles += folded(tri, -1, -1);
+    return reassign(level);
+  }
+
+  // Lloyd cannot undo every fold the initial placement made: a site whose
+  // cell sits on the wrong side of a neighbour moves within that cell. For
+  // each site on a folded triangle, try the free input vertices nearest (in
+  // space) to the mean of its neighbours, a Laplacian step, and take the
+  // first that leaves fewer folded triangles around it, or as many with a
+  // better worst triangle.
+  void untangle(RefineLevelReport& lr) {
+    constexpr int kPasses = 8;
+    constexpr size_t kCandidates = 48;
+    std::vector<uint32_t> idx(kCandidates);
+    std::vector<double> dist(kCandidates);
+    for (int pass = 0; pass < kPasses; ++pass) {
+      std::vector<int32_t> tangled;
+      for (const auto& tri : triangles_)
+        if (folded(tri, -1, -1)) tangled.insert(tangled.end(), tri.begin(), tri.end());
+      for (const auto& level_tris : coarse_triangles_)
+        for (const auto& tri : level_tris)
+          if (folded(tri, -1, -1)) tangled.insert(tangled.end(), tri.begin(), tri.end());
+      if (tangled.empty()) return;
+      std::sort(tangled.begin(), tangled.end());
+      tangled.erase(std::unique(tangled.begin(), tangled.end()), tangled.end());
+      size_t fixed = 0;
+      for (int32_t s : tangled) {
+        if (neighbors_.begin(s) == neighbors_.end(s)) continue;
+        Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+        for (const int32_t* n = neighbors_.begin(s); n != neighbors_.end(s); ++n) mean += points_[anchor_[*n]];
+        mean /= static_cast<double>(neighbors_.end(s) - neighbors_.begin(s));
+        const int32_t face = param_[anchor_[s]].face;
+        const std::pair<int, double> before = star_quality(s, anchor_[s]);
+        const size_t k = input_tree_.knnSearch(mean.data(), kCandidates, idx.data(), dist.data());
+        for (size_t j = 0; j < k; ++j) {
+          const int32_t i = static_cast<int32_t>(idx[j]);
+          if (site_of_[i] >= 0 || !allowed(s, i) || !near_face(face, param_[i].face)) continue;
+          // Fewer folds, or as many but the worst triangle less bad: a fold
+          // two vertices share is undone by moving them in turn.
+          const std::pair<int, double> after = star_quality(s, i);
+          if (after.first < before.first || (after.first == before.first && after.second > before.second + 1e-12)) {
+            site_of_[anchor_[s]] = -1;
+            anchor_[s] = i;
+            site_of_[i] = s;
+            ++fixed;
+            break;
+          }
+        }
+      }
+      lr.untangled += fixed;
+      if (fixed == 0) break;
+    }
+    // Last resort for the few folds no input vertex undoes (a site squeezed
+    // between neighbours that are themselves stuck): the site leaves the
+    // input and goes to the mean of its neighbours, when that is better.
+    std::vector<std::array<int32_t, 3>> still_folded;
+    for (const auto& tri : triangles_)
+      if (folded(tri, -1, -1)) still_folded.push_back(tri);
+    for (const auto& level_tris : coarse_triangles_)
+      for (const auto& tri : level_tris)
+        if (folded(tri, -1, -1)) still_folded.push_back(tri);
+    for (const auto& tri : still_folded) {
+      if (!folded(tri, -1, -1)) continue;
+      for (int32_t s : tri) {
+        if (neighbors_.begin(s) == neighbors_.end(s)) continue;
+        Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+        for (const int32_t* n = neighbors_.begin(s); n != neighbors_.end(s); ++n) mean += points_[anchor_[*n]];
+        mean /= static_cast<double>(neighbors_.end(s) - neighbors_.begin(s));
+        const int32_t from = anchor_[s];
+        const int32_t i = add_point(mean, param_[from], normals_[from], site_on_boundary_[s]);
+        const std::pair<int, double> before = star_quality(s, from), after = star_quality(s, i);
+        if (after.first < before.first || (after.first == before.first && after.second > before.second + 1e-12)) {
+          site_of_[from] = -1;
+          anchor_[s] = i;
+          site_of_[i] = s;
+          ++lr.off_input_moves;
+          break;
+        }
+        drop_last_point();
+      }
+    }
+  }
+
+  // A point that is not an input vertex (an edge midpoint, or an untangled
+  // site): it joins the points with no density, so Lloyd's centroids ignore
+  // it, and no site on it yet.
+  int32_t add_point(const Eigen::Vector3d& x, const ParamPoint& p, const Eigen::Vector3d& normal, char boundary) {
+    points_.push_back(x);
+    param_.push_back(p);
+    density_.push_back(0.0);
+    normals_.push_back(normal);
+    site_of_.push_back(-1);
+    input_on_boundary_.push_back(boundary);
+    return static_cast<int32_t>(points_.size() - 1);
+  }
+  void drop_last_point() {
+    points_.pop_back();
+    param_.pop_back();
+    density_.pop_back();
+    normals_.pop_back();
+    site_of_.pop_back();
+    input_on_boundary_.pop_back();
+  }
+
+  static Adjacency cells(const std::vector<int32_t>& cell_of, size_t sites) {
+    Adjacency members;
+    members.offsets.assign(sites + 1, 0);
+    for (int32_t s : cell_of)
+      if (s >= 0) ++members.offsets[s + 1];
+    for (size_t s = 0; s < sites; ++s) members.offsets[s + 1] += members.offsets[s];
+    std::vector<int32_t> fill(members.offsets.begin(), members.offsets.end() - 1);
+    members.items.resize(members.offsets[sites]);
+    for (size_t i = 0; i < cell_of.size(); ++i)
+      if (cell_of[i] >= 0) members.items[fill[cell_of[i]]++] = static_cast<int32_t>(i);
+    return members;
+  }
+
+  // How well a triangle of the remesh faces along the input surface: its
+  // normal against the sum of the input normals at its corners' vertices,
+  // scaled by its squared edge lengths (1/sqrt(3)-ish for a well-shaped,
+  // well-facing triangle; <= 0 when it faces against the surface or has no
+  // area). Site `moved` is taken to sit on input vertex `to`.
+  double facing(const std::array<int32_t, 3>& tri, int32_t moved, int32_t to) const {
+    std::array<int32_t, 3> at{};
+    for (int c = 0; c < 3; ++c) at[c] = tri[c] == moved ? to : anchor_[tri[c]];
+    const Eigen::Vector3d &p0 = points_[at[0]], &p1 = points_[at[1]], &p2 = points_[at[2]];
+    const Eigen::Vector3d n = (p1 - p0).cross(p2 - p0);
+    Eigen::Vector3d reference = normals_[at[0]] + normals_[at[1]] + normals_[at[2]];
+    const double r = reference.norm();
+    const double scale = (p1 - p0).squaredNorm() + (p2 - p1).squaredNorm() + (p0 - p2).squaredNorm();
+    if (!(r > 0.0) || !(scale > 0.0)) return 0.0;
+    return n.dot(reference) / (r * scale);
+  }
+
+  // Folded: facing the wrong way, or so thin it has no usable area.
+  bool folded(const std::array<int32_t, 3>& tri, int32_t moved, int32_t to) const {
+    return !(facing(tri, moved, to) > 1e-9);
+  }
+
+  // Around site s on input vertex `to`: the folded triangles, and the worst
+  // facing() of the others, for comparing positions.
+  std::pair<int, double> star_quality(int32_t s, int32_t to) const {
+    int folds = 0;
+    double worst = std::numeric_limits<double>::infinity();
+    auto add = [&](const std::vector<std::array<int32_t, 3>>& tris, const Adjacency& around) {
+      for (const int32_t* t = around.begin(s); t != around.end(s); ++t) {
+        const double f = facing(tris[*t], s, to);
+        folds += !(f > 1e-9);
+        worst = std::min(worst, f);
+      }
+    };
+    add(triangles_, around_);
+    for (size_t k = 0; k < coarse_triangles_.size(); ++k) add(coarse_triangles_[k], coarse_around_[k]);
+    return {folds, worst};
+  }
+
+  // Moving site s onto input vertex `to` is refused when it would leave more
+  // folded triangles around s than there are now: a move never folds a
+  // triangle it does not also unfold elsewhere, and moves that unfold are
+  // welcome (the initial placement of new vertices can fold triangles where
+  // the parameterization is stretched).
+  bool keeps_orientation(int32_t s, int32_t to) const {
+    return star_quality(s, to).first <= star_quality(s, anchor_[s]).first;
+  }
+
+  // Eqs. 4-5: f(s) = vertices in the cell of s, g(t) = min over t's corners;
+  // the leaves of `level` with g(t) > threshold (all of them when uniform).
+  std::vector<int32_t> select(int32_t level, const std::vector<int32_t>& cell_of) const {
+    std::vector<int32_t> f(static_cast<size_t>(h_.vertex_count()), 0);
+    for (int32_t s : cell_of)
+      if (s >= 0) ++f[s];
+    std::vector<int32_t> out;
+    const auto& nodes = h_.nodes();
+    for (size_t n = 0; n < nodes.size(); ++n) {
+      const TriangleHierarchy::Node& node = nodes[n];
+      if (node.level != level || node.first_child >= 0) continue;
+      const int32_t g = std::min({f[node.v[0]], f[node.v[1]], f[node.v[2]]});
+      if (options_.uniform || g > options_.threshold) out.push_back(static_cast<int32_t>(n));
+    }
+    return out;
+  }
+
+  const TriangleMesh& input_;
+  const BaseMesh& base_;
+  const RefineOptions& options_;
+  TriangleHierarchy h_;
+  // The input's vertices and their places on the base domain, plus any
+  // edge-midpoint vertices added where the input ran out (see
+  // place_new_vertex); density_, normals_ and site_of_ follow them.
+  std::vector<Eigen::Vector3d> points_;
+  std::vector<ParamPoint> param_;
+  std::vector<double> density_;
+  std::vector<Eigen::Vector3d> normals_;  // per input vertex, unit (area-weighted)
+  std::vector<Eigen::Vector3d> embedded_;
+  PointCloud cloud_;
+  PointTree tree_;  // over embedded_: nearest on the base domain
+  PointCloud input_cloud_;
+  PointTree input_tree_;  // over the input positions: nearest in space
+  Adjacency base_vertex_faces_;
+  Adjacency face_points_;
+  std::vector<int32_t> anchor_;   // per site (hierarchy vertex): its input vertex
+  std::vector<int32_t> site_of_;  // per input vertex: the site on it, or -1
+  size_t midpoint_vertices_ = 0;  // vertices placed off the input so far
+  std::vector<std::array<int32_t, 3>> triangles_;  // the current level's mesh
+  Adjacency neighbors_, around_;
+  std::vector<std::vector<std::array<int32_t, 3>>> coarse_triangles_;  // levels below the current one
+  std::vector<Adjacency> coarse_around_;
+  std::vector<char> site_on_boundary_;   // per hierarchy vertex, in the current level's mesh
+  std::vector<char> input_on_boundary_;  // per input vertex (points_)
+};
+
+}  // namespace
+
+StatusOr<RefineResult> refine(const TriangleMesh& input, const BaseMesh& base, const RefineOptions& options,
+                              std::vector<RefineLevelReport>* report) {
+  if (options.levels < 0 || options.levels > 12)
+    return invalid_argument("remesh: " + std::to_string(options.levels) + " levels asked; use 0 to 12");
+  if (base.param.size() != input.positions.size())
+    return invalid_argument("remesh: the parameterization covers " + std::to_string(base.param.size()) +
+                            " vertices but the input has " + std::to_string(input.positions.size()));
+  SRCODEC_ASSIGN_OR_RETURN(TriangleHierarchy hierarchy,
+                           TriangleHierarchy::create(static_cast<int32_t>(base.mesh.positions.size()),
+                                                     base.mesh.triangles));
+  Refiner refiner(input, base, options, std::move(hierarchy));
+  SRCODEC_RETURN_IF_ERROR(refiner.run(report));
+  return std::move(refiner).result();
+}
+
+}  // namespace srcodec

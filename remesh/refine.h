@@ -1,0 +1,73 @@
+// Refinement of the base mesh into an adaptive semi-regular mesh (Kammoun,
+// Payan, Antonini §III-B, Fig. 4 and 5, Eqs. 4-5; DESIGN.md remesh/ steps 6
+// and 7): per level, split the selected triangles 1-to-4, start every new
+// vertex at the input vertex nearest its edge's midpoint on the base domain,
+// then run Lloyd relaxation over the sites of all levels so far.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "format/mesh.h"
+#include "format/status.h"
+#include "remesh/base_mesh.h"
+#include "remesh/hierarchy.h"
+
+namespace srcodec {
+
+struct RefineOptions {
+  int levels = 4;  // levels to add above the base mesh, 0..12
+  // Eq. 5's threshold: a triangle is split when g(t), the fewest input
+  // vertices in the Voronoi cell of one of its three corners, exceeds it.
+  // Counts are of the mesh refinement runs on (the oversampled input).
+  double threshold = 0.0;
+  bool uniform = false;  // split every triangle of every level, whatever g(t)
+  // Lloyd steps per level; a level also stops when fewer than
+  // min_moved_fraction of its sites moved in a step.
+  int max_lloyd_iterations = 10;
+  double min_moved_fraction = 0.002;
+  std::function<void(const std::string&)> progress;  // one line per stage, may be empty
+};
+
+struct RefineLevelReport {
+  int level = 0;               // the level built
+  size_t selected = 0;         // triangles of the level below with g(t) > threshold
+  size_t split = 0;            // triangles split, with balance and closure splits
+  size_t vertices = 0;         // vertices of the level's mesh
+  size_t triangles = 0;        // triangles of the level's mesh
+  int lloyd_iterations = 0;
+  size_t moves = 0;            // site moves accepted, summed over the steps
+  size_t refused_folds = 0;    // site moves refused because a triangle would flip
+  size_t empty_cells = 0;       // sites whose cell holds only their own vertex after the last step
+  // Triangles facing against the input surface at the end (normal against
+  // the summed input normals at their corners, or no area); 0 in a clean
+  // remesh.
+  size_t folded_triangles = 0;
+  size_t coarse_folded_triangles = 0;  // the same, summed over the coarser levels' meshes
+  size_t untangled = 0;  // sites moved by the Laplacian untangling after Lloyd
+  // New vertices put at their parent edge's midpoint because no free input
+  // vertex was near: the input is too coarse there (oversample more).
+  size_t midpoint_vertices = 0;
+  // Sites moved off the input, to the mean of their neighbours, because no
+  // input vertex undid a fold around them.
+  size_t off_input_moves = 0;
+  double seconds = 0.0;
+};
+
+struct RefineResult {
+  TriangleHierarchy hierarchy;
+  std::vector<Eigen::Vector3d> positions;  // per hierarchy vertex
+  // Per hierarchy vertex: the input vertex it sits on (all distinct), or -1
+  // for a vertex placed off the input (midpoint_vertices, off_input_moves).
+  std::vector<int32_t> anchor;
+};
+
+// `input` is what the base mesh was built from (all components, disjoint);
+// `base` its base mesh and parameterization.
+StatusOr<RefineResult> refine(const TriangleMesh& input, const BaseMesh& base, const RefineOptions& options,
+                              std::vector<RefineLevelReport>* report = nullptr);
+
+}  // namespace srcodec

@@ -1,0 +1,56 @@
+// The whole remesher (Kammoun, Payan, Antonini; DESIGN.md remesh/ steps
+// 1-7): components, oversampling, LBG + Lloyd sites, base mesh by collapses
+// with its parameterization, then adaptive refinement with Lloyd.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "format/mesh.h"
+#include "format/status.h"
+#include "remesh/oversample.h"
+#include "remesh/refine.h"
+#include "remesh/semi_regular_mesh.h"
+
+namespace srcodec {
+
+struct RemeshOptions {
+  int levels = 4;  // 0..12
+  // Base mesh vertices over all components; 0 picks default_base_vertices.
+  size_t base_vertices = 0;
+  double threshold = 0.0;  // Eq. 5's epsilon, in vertices of the oversampled input
+  bool uniform = false;    // split everything; the threshold is then unused
+  int oversample = -1;     // Butterfly/Loop steps 0..3; -1 = auto_oversample_steps
+  OversampleScheme scheme = OversampleScheme::kButterfly;
+  int max_lloyd_iterations = 10;  // per refinement level
+  std::function<void(const std::string&)> progress;  // one line per stage, may be empty
+};
+
+struct RemeshReport {
+  size_t components = 0;
+  int oversample_steps = 0;                   // the most any component got
+  std::vector<int> component_oversample_steps;  // per component, in split_into_manifold_components's order
+  size_t oversampled_vertices = 0;
+  size_t base_vertices = 0;       // including promoted ones
+  size_t promoted_vertices = 0;   // non-sites the base mesh had to keep (see build_base_mesh)
+  double seconds_oversample = 0.0, seconds_sites = 0.0, seconds_base = 0.0, seconds_refine = 0.0;
+  std::vector<RefineLevelReport> levels;
+};
+
+// The default base size: the finest uniform level holds about half the
+// input's vertices (base * 4^levels ~ input / 2), at least 4 per component
+// and between 32 and 4000 in all.
+size_t default_base_vertices(size_t input_vertices, size_t components, int levels);
+
+// Remeshes a cleaned triangle mesh (format/'s clean_mesh output); each
+// connected component gets its own base mesh, its share of the base
+// vertices in proportion to its vertex count, and (with oversample = -1) its
+// own number of oversampling steps. Errors (kInvalidArgument) explain what
+// would work when the mesh is too small for the base size or levels asked.
+StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& options,
+                                 RemeshReport* report = nullptr);
+
+}  // namespace srcodec
