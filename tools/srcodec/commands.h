@@ -18,5 +18,7 @@ struct Command {
 Command add_info_command(CLI::App& app);
 Command add_compare_command(CLI::App& app);
 Command add_draco_command(CLI::App& app);
+Command add_remesh_command(CLI::App& app);
+Command add_subdivide_command(CLI::App& app);
 
 }  // namespace srcodec

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 namespace srcodec {
 
@@ -25,6 +26,11 @@ class JsonWriter {
   }
   JsonWriter& null_field(const std::string& key) { return raw(key, "null"); }
   JsonWriter& object(const std::string& key, const JsonWriter& inner) { return raw(key, inner.str()); }
+  JsonWriter& array(const std::string& key, const std::vector<JsonWriter>& items) {
+    std::string a = "[";
+    for (size_t i = 0; i < items.size(); ++i) a += (i ? ", " : "") + items[i].str();
+    return raw(key, a + "]");
+  }
 
   std::string str() const { return out_ + "}"; }
 

@@ -13,6 +13,8 @@ int main(int argc, char** argv) {
       srcodec::add_info_command(app),
       srcodec::add_compare_command(app),
       srcodec::add_draco_command(app),
+      srcodec::add_remesh_command(app),
+      srcodec::add_subdivide_command(app),
   };
 
   try {

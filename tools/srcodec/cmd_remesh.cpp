@@ -1,0 +1,162 @@
+// `srcodec remesh MESH -o OUT`: adaptive Voronoi semi-regular remeshing
+// (Kammoun, Payan, Antonini), with per-level size and error against the input.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+#include "format/mesh_io.h"
+#include "remesh/remesher.h"
+#include "tools/measure/surface_distance.h"
+#include "tools/srcodec/commands.h"
+#include "tools/srcodec/json_writer.h"
+
+namespace srcodec {
+namespace {
+
+struct RemeshCliOptions {
+  std::string input, output, write_levels, oversample = "auto", scheme = "butterfly";
+  int levels = 4;
+  size_t base_vertices = 0;
+  double threshold = -1.0;
+  bool uniform = false, json = false, quiet = false;
+  size_t samples = 200000;
+};
+
+StatusOr<RemeshOptions> to_options(const RemeshCliOptions& o) {
+  RemeshOptions r;
+  r.levels = o.levels;
+  r.base_vertices = o.base_vertices;
+  if (o.uniform && o.threshold >= 0.0)
+    return invalid_argument("--uniform and --threshold exclude each other (uniform is threshold 0 with every "
+                            "triangle split)");
+  // Without --threshold the remesh is uniform; every cell holds at least its
+  // own site's vertex, so epsilon 0 would split everything anyway.
+  r.uniform = o.uniform || o.threshold < 0.0;
+  r.threshold = std::max(o.threshold, 0.0);
+  if (o.oversample == "auto") {
+    r.oversample = -1;
+  } else if (o.oversample.size() == 1 && o.oversample[0] >= '0' && o.oversample[0] <= '3') {
+    r.oversample = o.oversample[0] - '0';
+  } else {
+    return invalid_argument("--oversample " + o.oversample + ": use auto, 0, 1, 2 or 3");
+  }
+  if (o.scheme == "butterfly") {
+    r.scheme = OversampleScheme::kButterfly;
+  } else if (o.scheme == "loop") {
+    r.scheme = OversampleScheme::kLoop;
+  } else {
+    return invalid_argument("--scheme " + o.scheme + ": use butterfly or loop");
+  }
+  return r;
+}
+
+Status run_remesh(const RemeshCliOptions& o) {
+  SRCODEC_ASSIGN_OR_RETURN(RemeshOptions options, to_options(o));
+  if (!o.quiet) options.progress = [](const std::string& line) { std::cerr << "remesh: " << line << std::endl; };
+  SRCODEC_ASSIGN_OR_RETURN(TriangleMesh input, read_triangle_mesh(o.input));
+  const auto start = std::chrono::steady_clock::now();
+  RemeshReport report;
+  SRCODEC_ASSIGN_OR_RETURN(SemiRegularMesh srm, remesh(input, options, &report));
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  SurfaceDistanceOptions distance_options;
+  distance_options.samples_per_surface = o.samples;
+  std::vector<JsonWriter> level_json;
+  if (!o.json) {
+    std::printf("%s: %zu vertices, %zu triangles, %zu component(s); oversampled %d time(s) (%zu vertices)\n",
+                o.input.c_str(), input.positions.size(), input.triangles.size(), report.components,
+                report.oversample_steps, report.oversampled_vertices);
+    std::printf("%5s %10s %10s %12s %9s %8s\n", "level", "vertices", "triangles", "rms", "psnr_db", "seconds");
+  }
+  for (int32_t level = 0; level <= srm.levels; ++level) {
+    const TriangleMesh mesh = srm.level_mesh(level);
+    SRCODEC_ASSIGN_OR_RETURN(SurfaceDistance d, surface_distance(input, mesh, distance_options));
+    const double level_seconds = level == 0 ? report.seconds_oversample + report.seconds_sites + report.seconds_base
+                                            : report.levels[level - 1].seconds;
+    if (!o.write_levels.empty()) {
+      const std::string path = o.write_levels + "_l" + std::to_string(level) + ".obj";
+      SRCODEC_RETURN_IF_ERROR(write_mesh(mesh, path));
+    }
+    if (o.json) {
+      JsonWriter j;
+      j.field("level", level)
+          .field("vertices", mesh.positions.size())
+          .field("triangles", mesh.triangles.size())
+          .field("rms", d.rms)
+          .field("psnr", d.psnr)
+          .field("seconds", level_seconds);
+      if (level > 0) {
+        const RefineLevelReport& lr = report.levels[level - 1];
+        j.field("selected", lr.selected)
+            .field("split", lr.split)
+            .field("lloyd_iterations", lr.lloyd_iterations)
+            .field("moves", lr.moves)
+            .field("refused_folds", lr.refused_folds)
+            .field("folded_triangles", lr.folded_triangles)
+            .field("coarse_folded_triangles", lr.coarse_folded_triangles)
+            .field("untangled", lr.untangled)
+            .field("midpoint_vertices", lr.midpoint_vertices)
+            .field("off_input_moves", lr.off_input_moves)
+            .field("empty_cells", lr.empty_cells);
+      }
+      level_json.push_back(j);
+    } else {
+      std::printf("%5d %10zu %10zu %12.6g %9.2f %8.2f\n", level, mesh.positions.size(), mesh.triangles.size(),
+                  d.rms, d.psnr, level_seconds);
+    }
+  }
+  SRCODEC_RETURN_IF_ERROR(write_mesh(srm.level_mesh(srm.levels), o.output));
+  if (o.json) {
+    JsonWriter j;
+    j.field("input", o.input)
+        .field("output", o.output)
+        .field("input_vertices", input.positions.size())
+        .field("components", report.components)
+        .field("oversample_steps", report.oversample_steps)
+        .field("oversampled_vertices", report.oversampled_vertices)
+        .field("base_vertices", report.base_vertices)
+        .field("promoted_vertices", report.promoted_vertices)
+        .field("uniform", options.uniform)
+        .field("threshold", options.threshold)
+        .field("seconds", seconds)
+        .array("levels", level_json);
+    std::cout << j.str() << "\n";
+  } else {
+    std::printf("wrote %s (level %d) in %.2f s\n", o.output.c_str(), srm.levels, seconds);
+  }
+  return ok_status();
+}
+
+}  // namespace
+
+Command add_remesh_command(CLI::App& app) {
+  auto o = std::make_shared<RemeshCliOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "remesh", "Adaptive semi-regular remeshing (Voronoi/Lloyd, Kammoun-Payan-Antonini) with per-level error");
+  cmd->add_option("mesh", o->input, "Input mesh (OBJ, PLY, OFF, STL)")->required();
+  cmd->add_option("-o,--output", o->output, "Finest level, written as OBJ or PLY")->required();
+  cmd->add_option("--levels", o->levels, "Refinement levels above the base mesh")
+      ->check(CLI::Range(0, 12))
+      ->capture_default_str();
+  cmd->add_option("--base-vertices", o->base_vertices,
+                  "Base mesh vertices (default: about 2 x input vertices / 4^levels, 32..4000)");
+  auto* threshold = cmd->add_option("--threshold", o->threshold,
+                                    "Adaptive: split a triangle only when each corner's Voronoi cell holds more "
+                                    "than this many (oversampled) input vertices (Eq. 5)");
+  threshold->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--uniform", o->uniform, "Split every triangle (the default without --threshold)")->excludes(threshold);
+  cmd->add_option("--oversample", o->oversample, "Subdivision steps before remeshing: auto, 0, 1, 2 or 3")
+      ->capture_default_str();
+  cmd->add_option("--scheme", o->scheme, "Oversampling scheme: butterfly or loop")->capture_default_str();
+  cmd->add_option("--write-levels", o->write_levels, "Also write every level to PREFIX_l<level>.obj");
+  cmd->add_option("--samples", o->samples, "Samples per surface for the error figures")
+      ->check(CLI::Range(size_t{1000}, size_t{100000000}))
+      ->capture_default_str();
+  cmd->add_flag("--json", o->json, "Print one JSON object");
+  cmd->add_flag("-q,--quiet", o->quiet, "No progress lines on stderr");
+  return {cmd, [o] { return run_remesh(*o); }};
+}
+
+}  // namespace srcodec
