@@ -20,14 +20,6 @@
 // dual, as in the paper.
 #include "remesh/base_mesh.h"
 
-// OpenMesh's property vectors trip GCC 12's -Wmaybe-uninitialized inside
-// std::vector<VectorT>::push_back (a false positive in the library's
-// templates, as for oversample.cpp).
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
-#pragma GCC diagnostic pop
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -35,14 +27,12 @@
 #include <string>
 #include <utility>
 
+#include "remesh/adjacency.h"
+#include "remesh/openmesh_types.h"
+
 namespace srcodec {
 namespace {
 
-struct DoubleTraits : public OpenMesh::DefaultTraits {
-  using Point = OpenMesh::Vec3d;
-  using Normal = OpenMesh::Vec3d;
-};
-using OmMesh = OpenMesh::TriMesh_ArrayKernelT<DoubleTraits>;
 using OpenMesh::FaceHandle;
 using OpenMesh::HalfedgeHandle;
 using OpenMesh::VertexHandle;
@@ -182,38 +172,6 @@ Status check_mesh(const TriangleMesh& mesh) {
   return ok_status();
 }
 
-// Vertex neighbours of the input, compressed rows.
-struct Adjacency {
-  std::vector<int32_t> offsets, neighbors;
-};
-
-Adjacency build_adjacency(const TriangleMesh& mesh) {
-  const size_t n = mesh.positions.size();
-  Adjacency adj;
-  adj.offsets.assign(n + 1, 0);
-  for (const auto& t : mesh.triangles)
-    for (int32_t v : t) adj.offsets[v + 1] += 2;
-  for (size_t v = 0; v < n; ++v) adj.offsets[v + 1] += adj.offsets[v];
-  std::vector<int32_t> fill(adj.offsets.begin(), adj.offsets.end() - 1);
-  adj.neighbors.resize(adj.offsets[n]);
-  for (const auto& t : mesh.triangles)
-    for (int c = 0; c < 3; ++c) {
-      adj.neighbors[fill[t[c]]++] = t[(c + 1) % 3];
-      adj.neighbors[fill[t[c]]++] = t[(c + 2) % 3];
-    }
-  int32_t out = 0;
-  for (size_t v = 0; v < n; ++v) {
-    auto first = adj.neighbors.begin() + adj.offsets[v], last = adj.neighbors.begin() + adj.offsets[v + 1];
-    std::sort(first, last);
-    last = std::unique(first, last);
-    adj.offsets[v] = out;
-    for (auto it = first; it != last; ++it) adj.neighbors[out++] = *it;
-  }
-  adj.offsets[n] = out;
-  adj.neighbors.resize(out);
-  return adj;
-}
-
 // Breadth-first hops from each site inside its own cell. Without cell_of the
 // cells are grown here, by a breadth-first search from all sites at once.
 // Vertices their cell's search never reaches keep depth -1 (only a
@@ -234,7 +192,7 @@ void cell_depths(const Adjacency& adj, const std::vector<int32_t>& sites, std::v
   for (size_t head = 0; head < queue.size(); ++head) {
     const int32_t u = queue[head];
     for (int32_t i = adj.offsets[u]; i < adj.offsets[u + 1]; ++i) {
-      const int32_t w = adj.neighbors[i];
+      const int32_t w = adj.items[i];
       if (depth[w] >= 0) continue;
       if (grow) {
         cell[w] = cell[u];
@@ -661,7 +619,7 @@ StatusOr<BaseMesh> build_base_mesh(const TriangleMesh& mesh, const std::vector<i
   rep = BaseMeshReport{};
 
   std::vector<int32_t> cell = cell_of, depth;
-  cell_depths(build_adjacency(mesh), sites, cell, depth);
+  cell_depths(vertex_neighbors(mesh.positions.size(), mesh.triangles), sites, cell, depth);
 
   Collapser collapser(mesh, sites, rep);
   SRCODEC_RETURN_IF_ERROR(collapser.build(mesh));

@@ -7,14 +7,11 @@
 #include <OpenMesh/Tools/Subdivider/Uniform/ModifiedButterFlyT.hh>
 #include <string>
 
+#include "remesh/openmesh_types.h"
+
 namespace srcodec {
 namespace {
 
-struct DoubleTraits : public OpenMesh::DefaultTraits {
-  using Point = OpenMesh::Vec3d;
-  using Normal = OpenMesh::Vec3d;
-};
-using OmMesh = OpenMesh::TriMesh_ArrayKernelT<DoubleTraits>;
 
 StatusOr<OmMesh> to_openmesh(const TriangleMesh& mesh) {
   OmMesh om;

@@ -40,9 +40,11 @@ struct RemeshReport {
   std::vector<RefineLevelReport> levels;
 };
 
-// The default base size: the finest uniform level holds about half the
-// input's vertices (base * 4^levels ~ input / 2), at least 4 per component
-// and between 32 and 4000 in all.
+// The default base size: the larger the base mesh, the less the
+// parameterization is stretched (the main limit on quality), so as many base
+// vertices as the oversampling budget allows with about 8 input vertices per
+// finest-level vertex, at most one per 64 input vertices, at least 4 per
+// component, and between 100 and 4000 in all.
 size_t default_base_vertices(size_t input_vertices, size_t components, int levels);
 
 // Remeshes a cleaned triangle mesh (format/'s clean_mesh output); each

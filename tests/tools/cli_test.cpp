@@ -99,5 +99,44 @@ TEST(Cli, DracoThenCompareOnSample) {
   EXPECT_LT(json_number(self.out, "rms"), 1e-12 * 15.7572);  // rounding only
 }
 
+TEST(Cli, RemeshSampleReportsEveryLevel) {
+  test::ScratchDir dir;
+  const std::string out = dir.file("bunny_sr.obj");
+  auto r = run_srcodec("remesh --json --quiet --levels 2 --samples 20000 " + q(test::source_path("data/bunny_npm.obj")) +
+                       " -o " + q(out) + " --write-levels " + q(dir.file("lv")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << "--quiet prints no progress: " << r.err;
+  for (const char* level : {"\"level\": 0", "\"level\": 1", "\"level\": 2"})
+    EXPECT_NE(r.out.find(level), std::string::npos) << r.out;
+  EXPECT_EQ(json_number(r.out, "input_vertices"), 1839);
+  EXPECT_GE(json_number(r.out, "oversample_steps"), 1);  // 1839 vertices are coarse for 2 levels over 100
+  for (const std::string& f : {out, dir.file("lv_l0.obj"), dir.file("lv_l1.obj"), dir.file("lv_l2.obj")}) {
+    auto bytes = read_file_bytes(f);
+    ASSERT_TRUE(bytes.ok()) << f;
+    EXPECT_GT(bytes->size(), 100u) << f;
+  }
+  // The finest level measured against the input: a finite, plausible PSNR.
+  const double psnr = json_number(r.out.substr(r.out.rfind("\"level\": 2")), "psnr");
+  EXPECT_GT(psnr, 40.0);
+  EXPECT_LT(psnr, 120.0);
+}
+
+TEST(Cli, RemeshBadRequestsSayWhatWouldWork) {
+  test::ScratchDir dir;
+  const std::string in = q(test::source_path("data/bunny_npm.obj")), out = dir.file("x.obj");
+  auto big = run_srcodec("remesh --quiet --oversample 0 --base-vertices 5000 " + in + " -o " + q(out));
+  EXPECT_EQ(big.exit_code, 1);
+  EXPECT_NE(big.err.find("base vertices"), std::string::npos) << big.err;
+  EXPECT_NE(big.err.find("oversample"), std::string::npos) << big.err;
+  auto deep = run_srcodec("remesh --quiet --oversample 0 --levels 4 " + in + " -o " + q(out));
+  EXPECT_EQ(deep.exit_code, 1);
+  EXPECT_NE(deep.err.find("fewer levels"), std::string::npos) << deep.err;
+  auto scheme = run_srcodec("remesh --quiet --oversample 9 " + in + " -o " + q(out));
+  EXPECT_NE(scheme.exit_code, 0);
+  auto both = run_srcodec("remesh --quiet --uniform --threshold 3 " + in + " -o " + q(out));
+  EXPECT_NE(both.exit_code, 0);
+  EXPECT_FALSE(read_file_bytes(out).ok()) << "a failed remesh must not leave an output file";
+}
+
 }  // namespace
 }  // namespace srcodec

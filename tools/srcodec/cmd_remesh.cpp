@@ -141,7 +141,7 @@ Command add_remesh_command(CLI::App& app) {
       ->check(CLI::Range(0, 12))
       ->capture_default_str();
   cmd->add_option("--base-vertices", o->base_vertices,
-                  "Base mesh vertices (default: about 2 x input vertices / 4^levels, 32..4000)");
+                  "Base mesh vertices (default: from the input size and levels, 100..4000; see README)");
   auto* threshold = cmd->add_option("--threshold", o->threshold,
                                     "Adaptive: split a triangle only when each corner's Voronoi cell holds more "
                                     "than this many (oversampled) input vertices (Eq. 5)");
