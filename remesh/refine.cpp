@@ -73,9 +73,37 @@ std::vector<char> boundary_vertices(size_t n, const std::vector<std::array<int32
   return on;
 }
 
+// The point of triangle abc nearest to p (by the triangle's Voronoi regions:
+// a vertex, an edge or the inside).
+Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                    const Eigen::Vector3d& c) {
+  const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return a;
+  const Eigen::Vector3d bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0.0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + ab * (d1 / (d1 - d3));
+  const Eigen::Vector3d cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0.0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + ac * (d2 / (d2 - d6));
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  const double denom = va + vb + vc;
+  if (!(std::abs(denom) > 0.0)) return a;
+  return a + ab * (vb / denom) + ac * (vc / denom);
+}
+
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
+
+// A new vertex whose nearest free input vertex is farther from its edge's
+// midpoint than this fraction of the edge goes onto the input surface.
+constexpr double kSparseFraction = 0.25;
 
 class Refiner {
  public:
@@ -95,7 +123,8 @@ class Refiner {
         input_tree_(3, input_cloud_, nanoflann::KDTreeSingleIndexAdaptorParams(10)),
         base_vertex_faces_(vertex_triangles(base.mesh.positions.size(), base.mesh.triangles)),
         site_of_(input.positions.size(), -1),
-        input_on_boundary_(boundary_vertices(input.positions.size(), input.triangles)) {
+        input_on_boundary_(boundary_vertices(input.positions.size(), input.triangles)),
+        input_around_(vertex_triangles(input.positions.size(), input.triangles)) {
     tree_.buildIndex();
     input_tree_.buildIndex();
     build_face_points();
@@ -124,9 +153,10 @@ class Refiner {
       ++level;
       anchor_.resize(h_.vertex_count(), -1);
       build_level_mesh(level);  // new vertices need to know whether they are on the boundary
-      const size_t midpoints_before = midpoint_vertices_;
+      const size_t midpoints_before = midpoint_vertices_, surface_before = surface_vertices_;
       for (int32_t v : new_vertices) SRCODEC_RETURN_IF_ERROR(place_new_vertex(v));
       lr.midpoint_vertices = midpoint_vertices_ - midpoints_before;
+      lr.surface_vertices = surface_vertices_ - surface_before;
       cell_of = relax(level, lr);
       lr.vertices = h_.level_vertex_count(level);
       lr.triangles = triangles_.size();
@@ -221,7 +251,21 @@ class Refiner {
           best = i;
         }
       }
-      if (best >= 0) return take(v, best);
+      if (best >= 0) {
+        // Where the input is sparse, its nearest free vertex is far from the
+        // edge: the new vertex goes to the input surface point nearest the
+        // edge's midpoint instead (a forced split would otherwise stack
+        // vertices and fold the mesh).
+        const double edge_length = (points_[anchor_[edge[0]]] - points_[anchor_[edge[1]]]).norm();
+        if (!site_on_boundary_[v] && std::sqrt(best_d) > kSparseFraction * edge_length) {
+          const int32_t on_surface = surface_point(midpoint, p.face, best_d);
+          if (on_surface >= 0) {
+            ++surface_vertices_;
+            return take(v, on_surface);
+          }
+        }
+        return take(v, best);
+      }
       if (k == embedded_.size()) break;
     }
     // The nearest points are all taken (the parameterization crowds them
@@ -261,6 +305,38 @@ class Refiner {
     const int32_t i = add_point(midpoint, p, normal, site_on_boundary_[v]);
     ++midpoint_vertices_;
     return take(v, i);
+  }
+
+  // The point of the input surface nearest to x among the triangles around
+  // the input vertices nearest x (on the base faces near `face`), added as a
+  // point off the input's vertices; -1 when it is no nearer than sqrt(bound).
+  int32_t surface_point(const Eigen::Vector3d& x, int32_t face, double bound) {
+    constexpr size_t kNear = 8;
+    std::array<uint32_t, kNear> idx{};
+    std::array<double, kNear> dist{};
+    const size_t k = input_tree_.knnSearch(x.data(), kNear, idx.data(), dist.data());
+    Eigen::Vector3d best_point = Eigen::Vector3d::Zero();
+    int32_t best_triangle = -1, best_vertex = -1;
+    for (size_t j = 0; j < k; ++j) {
+      const int32_t i = static_cast<int32_t>(idx[j]);
+      if (input_on_boundary_[i] || !near_face(face, param_[i].face)) continue;
+      for (const int32_t* t = input_around_.begin(i); t != input_around_.end(i); ++t) {
+        const auto& tri = input_.triangles[*t];
+        const Eigen::Vector3d q = closest_on_triangle(x, points_[tri[0]], points_[tri[1]], points_[tri[2]]);
+        const double d = (q - x).squaredNorm();
+        if (d < bound) {
+          bound = d;
+          best_point = q;
+          best_triangle = *t;
+          best_vertex = i;
+        }
+      }
+    }
+    if (best_triangle < 0) return -1;
+    const auto& tri = input_.triangles[best_triangle];
+    Eigen::Vector3d normal = (points_[tri[1]] - points_[tri[0]]).cross(points_[tri[2]] - points_[tri[0]]);
+    if (normal.norm() > 0.0) normal.normalize();
+    return add_point(best_point, param_[best_vertex], normal, 0);
   }
 
   Status take(int32_t v, int32_t i) {
@@ -582,12 +658,14 @@ class Refiner {
   std::vector<int32_t> anchor_;   // per site (hierarchy vertex): its input vertex
   std::vector<int32_t> site_of_;  // per input vertex: the site on it, or -1
   size_t midpoint_vertices_ = 0;  // vertices placed off the input so far
+  size_t surface_vertices_ = 0;   // new vertices put on the input surface between its vertices
   std::vector<std::array<int32_t, 3>> triangles_;  // the current level's mesh
   Adjacency neighbors_, around_;
   std::vector<std::vector<std::array<int32_t, 3>>> coarse_triangles_;  // levels below the current one
   std::vector<Adjacency> coarse_around_;
   std::vector<char> site_on_boundary_;   // per hierarchy vertex, in the current level's mesh
   std::vector<char> input_on_boundary_;  // per input vertex (points_)
+  Adjacency input_around_;               // per input vertex of the input: its triangles
 };
 
 }  // namespace

@@ -51,6 +51,9 @@ struct RefineLevelReport {
   // New vertices put at their parent edge's midpoint because no free input
   // vertex was near: the input is too coarse there (oversample more).
   size_t midpoint_vertices = 0;
+  // New vertices put on the input surface between input vertices, because
+  // the nearest free input vertex was far from their edge's midpoint.
+  size_t surface_vertices = 0;
   // Sites moved off the input, to the mean of their neighbours, because no
   // input vertex undid a fold around them.
   size_t off_input_moves = 0;

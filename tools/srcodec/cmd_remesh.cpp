@@ -98,6 +98,7 @@ Status run_remesh(const RemeshCliOptions& o) {
             .field("coarse_folded_triangles", lr.coarse_folded_triangles)
             .field("untangled", lr.untangled)
             .field("midpoint_vertices", lr.midpoint_vertices)
+            .field("surface_vertices", lr.surface_vertices)
             .field("off_input_moves", lr.off_input_moves)
             .field("empty_cells", lr.empty_cells);
       }
