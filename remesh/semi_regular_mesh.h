@@ -18,10 +18,10 @@ struct SemiRegularMesh {
   // The split quadtree of every base triangle, each vertex's level and parent
   // edge, and the watertight mesh of every level (hierarchy.level_triangles).
   TriangleHierarchy hierarchy;
-  // Per hierarchy vertex: its position. Voronoi sites are input vertices, so
-  // every position is a vertex of the (oversampled) input the remesher ran
-  // on, except where the input ran out near a new vertex (then it is the
-  // midpoint of its parent edge; RefineLevelReport counts those).
+  // Per hierarchy vertex: its position. Voronoi sites are vertices of the
+  // (oversampled) input the remesher ran on, except where the input is sparse
+  // (then a point of the input surface) or ran out (an edge midpoint), and a
+  // few sites moved to untangle folds; RefineLevelReport counts each kind.
   std::vector<Eigen::Vector3d> positions;
   int32_t levels = 0;  // the finest level built (hierarchy.max_level() may be lower if nothing was split)
 
