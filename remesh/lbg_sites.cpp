@@ -23,6 +23,7 @@
 
 #include "remesh/adjacency.h"
 #include "remesh/density.h"
+#include "remesh/point_cloud.h"
 
 namespace srcodec {
 namespace {
@@ -84,16 +85,6 @@ struct Context {
 
 // ---- Eq. 1: nearest-site assignment -------------------------------------
 
-struct SiteCloud {
-  const std::vector<Eigen::Vector3d>& points;
-  size_t kdtree_get_point_count() const { return points.size(); }
-  double kdtree_get_pt(size_t i, size_t dim) const { return points[i][static_cast<Eigen::Index>(dim)]; }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const { return false; }
-};
-using SiteTree =
-    nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, SiteCloud>, SiteCloud, 3, uint32_t>;
-
 // A nanoflann result set for the single nearest site, seeded with the vertex's
 // current site: its distance bounds the search (most of the tree is pruned
 // after a Lloyd step) and on ties the vertex stays where it is.
@@ -125,8 +116,8 @@ class NearestBelow {
 // number of threads.
 void assign_nearest(const Context& ctx, const std::vector<Eigen::Vector3d>& generators,
                     const std::vector<int32_t>& anchors, std::vector<int32_t>& cell_of) {
-  const SiteCloud cloud{generators};
-  const SiteTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(8));
+  const PointCloud cloud{generators};
+  const PointTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(8));
   tbb::parallel_for(tbb::blocked_range<size_t>(0, cell_of.size(), 2048), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t v = r.begin(); v != r.end(); ++v) {
       const Eigen::Vector3d& p = ctx.positions[v];

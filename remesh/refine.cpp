@@ -28,19 +28,10 @@
 
 #include "remesh/adjacency.h"
 #include "remesh/density.h"
+#include "remesh/point_cloud.h"
 
 namespace srcodec {
 namespace {
-
-struct PointCloud {
-  const std::vector<Eigen::Vector3d>& points;
-  size_t kdtree_get_point_count() const { return points.size(); }
-  double kdtree_get_pt(size_t i, size_t dim) const { return points[i][static_cast<Eigen::Index>(dim)]; }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const { return false; }
-};
-using PointTree =
-    nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointCloud>, PointCloud, 3, uint32_t>;
 
 std::vector<Eigen::Vector3d> unit_vertex_normals(const TriangleMesh& mesh) {
   std::vector<Eigen::Vector3d> n(mesh.positions.size(), Eigen::Vector3d::Zero());
