@@ -14,13 +14,20 @@ namespace srcodec {
 
 namespace fs = std::filesystem;
 
-Status write_file_atomically(const std::string& path, const std::string& bytes) {
+Status check_output_path(const std::string& path) {
   const fs::path target(path);
   if (target.filename().empty()) return invalid_argument(path + ": output path names no file");
   std::error_code ec;
   if (fs::is_directory(target, ec)) return invalid_argument(path + ": output path is a directory");
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
   if (!fs::is_directory(dir, ec)) return not_found(path + ": output folder '" + dir.string() + "' does not exist");
+  return ok_status();
+}
+
+Status write_file_atomically(const std::string& path, const std::string& bytes) {
+  SRCODEC_RETURN_IF_ERROR(check_output_path(path));
+  const fs::path target(path);
+  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
 
   const std::string tmp = (dir / ("." + target.filename().string() + ".tmp" + std::to_string(::getpid()))).string();
   std::FILE* f = std::fopen(tmp.c_str(), "wb");

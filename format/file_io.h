@@ -7,6 +7,10 @@
 
 namespace srcodec {
 
+// OK when `path` names a file (not a folder) in a folder that exists: lets a
+// long computation fail before it starts rather than at the end.
+Status check_output_path(const std::string& path);
+
 // Writes `bytes` to a temporary file in the target's folder and renames it
 // over `path`: readers never see a partial file, and on failure whatever was
 // at `path` before is left as it was.

@@ -135,6 +135,9 @@ TEST(Cli, RemeshBadRequestsSayWhatWouldWork) {
   EXPECT_NE(scheme.exit_code, 0);
   auto both = run_srcodec("remesh --quiet --uniform --threshold 3 " + in + " -o " + q(out));
   EXPECT_NE(both.exit_code, 0);
+  auto folder = run_srcodec("remesh --quiet " + in + " -o " + q(dir.file("no/such/folder/x.obj")));
+  EXPECT_EQ(folder.exit_code, 1);
+  EXPECT_NE(folder.err.find("does not exist"), std::string::npos) << folder.err;
   EXPECT_FALSE(read_file_bytes(out).ok()) << "a failed remesh must not leave an output file";
 }
 

@@ -6,6 +6,7 @@
 #include <iostream>
 #include <memory>
 
+#include "format/file_io.h"
 #include "format/mesh_io.h"
 #include "remesh/remesher.h"
 #include "tools/measure/surface_distance.h"
@@ -54,6 +55,8 @@ StatusOr<RemeshOptions> to_options(const RemeshCliOptions& o) {
 
 Status run_remesh(const RemeshCliOptions& o) {
   SRCODEC_ASSIGN_OR_RETURN(RemeshOptions options, to_options(o));
+  SRCODEC_RETURN_IF_ERROR(check_output_path(o.output));
+  if (!o.write_levels.empty()) SRCODEC_RETURN_IF_ERROR(check_output_path(o.write_levels + "_l0.obj"));
   if (!o.quiet) options.progress = [](const std::string& line) { std::cerr << "remesh: " << line << std::endl; };
   SRCODEC_ASSIGN_OR_RETURN(TriangleMesh input, read_triangle_mesh(o.input));
   const auto start = std::chrono::steady_clock::now();
