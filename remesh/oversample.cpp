@@ -67,15 +67,4 @@ StatusOr<TriangleMesh> oversample(const TriangleMesh& mesh, OversampleScheme sch
   return out;
 }
 
-int auto_oversample_steps(size_t input_vertices, size_t finest_vertices, double min_ratio, size_t max_vertices) {
-  int steps = 0;
-  double v = static_cast<double>(input_vertices);
-  // Each 1-to-4 step roughly quadruples the vertex count (V' = V + E ~ 4V).
-  while (steps < 3 && v < min_ratio * static_cast<double>(finest_vertices) && 4.0 * v <= max_vertices) {
-    v *= 4.0;
-    ++steps;
-  }
-  return steps;
-}
-
 }  // namespace srcodec

@@ -7,7 +7,6 @@
 // the approximating Loop scheme.
 #pragma once
 
-#include <cstddef>
 
 #include "format/mesh.h"
 #include "format/status.h"
@@ -23,12 +22,5 @@ enum class OversampleScheme { kButterfly, kLoop };
 // boundary rules (4-point / cubic B-spline), so boundary loops stay loops.
 // Errors: steps outside 0..3, or a mesh OpenMesh cannot take as a manifold.
 StatusOr<TriangleMesh> oversample(const TriangleMesh& mesh, OversampleScheme scheme, int steps);
-
-// The `--oversample auto` rule: the fewest steps (at most 3) after which the
-// input has at least `min_ratio` vertices per vertex of the finest uniform
-// level (`finest_vertices`), without passing `max_vertices` (the step that
-// would pass it is not taken).
-int auto_oversample_steps(size_t input_vertices, size_t finest_vertices, double min_ratio = 1.0,
-                          size_t max_vertices = 8000000);
 
 }  // namespace srcodec

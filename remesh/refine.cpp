@@ -399,7 +399,7 @@ class Refiner {
   // Lloyd relaxation over the sites of all levels (§III-B). Returns the
   // final cells, which Eqs. 4-5 use to select the next level's splits.
   std::vector<int32_t> relax(int32_t level, RefineLevelReport& lr) {
-    std::vector<int32_t> cell_of = assign(level);
+    std::vector<int32_t> cell_of = reassign(level);  // run() built this level's mesh before placing vertices
     const size_t sites = static_cast<size_t>(h_.vertex_count());
     for (int it = 0; it < options_.max_lloyd_iterations; ++it) {
       const Adjacency members = cells(cell_of, sites);

@@ -23,7 +23,7 @@ struct RemeshOptions {
   size_t base_vertices = 0;
   double threshold = 0.0;  // Eq. 5's epsilon, in vertices of the oversampled input
   bool uniform = false;    // split everything; the threshold is then unused
-  int oversample = -1;     // Butterfly/Loop steps 0..3; -1 = auto_oversample_steps
+  int oversample = -1;     // Butterfly/Loop steps 0..3; -1 = auto, per component (remesher.cpp)
   OversampleScheme scheme = OversampleScheme::kButterfly;
   int max_lloyd_iterations = 10;  // per refinement level
   std::function<void(const std::string&)> progress;  // one line per stage, may be empty

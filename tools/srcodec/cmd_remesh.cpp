@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <utility>
 
 #include "format/file_io.h"
 #include "format/mesh_io.h"
@@ -73,8 +74,9 @@ Status run_remesh(const RemeshCliOptions& o) {
                 report.oversample_steps, report.oversampled_vertices);
     std::printf("%5s %10s %10s %12s %9s %8s\n", "level", "vertices", "triangles", "rms", "psnr_db", "seconds");
   }
+  TriangleMesh finest;
   for (int32_t level = 0; level <= srm.levels; ++level) {
-    const TriangleMesh mesh = srm.level_mesh(level);
+    TriangleMesh mesh = srm.level_mesh(level);
     SRCODEC_ASSIGN_OR_RETURN(SurfaceDistance d, surface_distance(input, mesh, distance_options));
     const double level_seconds = level == 0 ? report.seconds_oversample + report.seconds_sites + report.seconds_base
                                             : report.levels[level - 1].seconds;
@@ -110,8 +112,9 @@ Status run_remesh(const RemeshCliOptions& o) {
       std::printf("%5d %10zu %10zu %12.6g %9.2f %8.2f\n", level, mesh.positions.size(), mesh.triangles.size(),
                   d.rms, d.psnr, level_seconds);
     }
+    if (level == srm.levels) finest = std::move(mesh);
   }
-  SRCODEC_RETURN_IF_ERROR(write_mesh(srm.level_mesh(srm.levels), o.output));
+  SRCODEC_RETURN_IF_ERROR(write_mesh(finest, o.output));
   if (o.json) {
     JsonWriter j;
     j.field("input", o.input)
