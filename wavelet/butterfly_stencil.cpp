@@ -1,0 +1,213 @@
+// Modified Butterfly stencils (Zorin, Schröder, Sweldens 1996, §4), written to
+// give the same weights as OpenMesh's Subdivider::Uniform::ModifiedButterflyT
+// wherever that is defined:
+//  - boundary edge: 4-point rule -1/16, 9/16, 9/16, -1/16 along the boundary;
+//  - interior edge whose ends are both valence 6, or one boundary end and the
+//    other valence 6, or both ends on the boundary: the 8-point stencil
+//    1/2, 1/2, 1/8, 1/8, -1/16 x 4; a wing vertex missing because its edge is
+//    on the boundary is replaced by the reflection of the opposite corner
+//    across that edge's midpoint (u + v - w);
+//  - otherwise each interior end of valence K != 6 gives the extraordinary
+//    rule 3/4 on itself and s_i on its ring (s_i = (1/4 + cos(2 pi i/K) +
+//    1/2 cos(4 pi i/K)) / K for K >= 5; K = 3: 5/12, -1/12, -1/12; K = 4: 3/8,
+//    0, -1/8, 0), and the stencil is the average over those ends.
+// See wavelet/README.md for why this is the rule at the boundary.
+#include "wavelet/butterfly_stencil.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace srcodec {
+namespace {
+
+using Tap = LiftingPlan::Tap;
+constexpr double kPi = 3.14159265358979323846;
+
+// Steps bounded by the vertex's valence: a walk that does not end in a
+// manifold fan gives up instead of looping.
+int32_t walk_limit(const LevelMesh& mesh, int32_t v) { return mesh.valence(v) + 2; }
+
+// Boundary neighbour of q reached by turning around q from the triangle that
+// holds the directed edge (p, q), away from p; -1 if the fan does not end.
+int32_t boundary_neighbour_after(const LevelMesh& mesh, int32_t p, int32_t q) {
+  int32_t r = mesh.third(p, q);  // triangle (p, q, r): q's outgoing edge (q, r)
+  for (int32_t step = 0; r >= 0 && step < walk_limit(mesh, q); ++step) {
+    const int32_t s = mesh.third(r, q);  // triangle (r, q, s) across (q, r)
+    if (s < 0) return r;
+    r = s;
+  }
+  return -1;
+}
+
+// Boundary neighbour of p reached by turning around p from the triangle that
+// holds the directed edge (p, q), away from q; -1 if the fan does not end.
+int32_t boundary_neighbour_before(const LevelMesh& mesh, int32_t p, int32_t q) {
+  int32_t r = mesh.third(p, q);  // triangle (p, q, r): p's incoming edge (r, p)
+  for (int32_t step = 0; r >= 0 && step < walk_limit(mesh, p); ++step) {
+    const int32_t s = mesh.third(p, r);  // triangle (p, r, s) across (r, p)
+    if (s < 0) return r;
+    r = s;
+  }
+  return -1;
+}
+
+void four_point(const LevelMesh& mesh, int32_t p, int32_t q, std::vector<Tap>* out) {
+  const int32_t before = boundary_neighbour_before(mesh, p, q);
+  const int32_t after = boundary_neighbour_after(mesh, p, q);
+  if (before < 0 || after < 0) {  // not a manifold boundary: linear
+    out->push_back({p, 0.5});
+    out->push_back({q, 0.5});
+    return;
+  }
+  out->push_back({p, 9.0 / 16});
+  out->push_back({q, 9.0 / 16});
+  out->push_back({before, -1.0 / 16});
+  out->push_back({after, -1.0 / 16});
+}
+
+// Wing of the 8-point stencil across edge (u, v) of a triangle (u, v, w)
+// (directed edge (u, v) in it): the corner of the triangle across, or the
+// reflection u + v - w when the edge is on the boundary.
+void wing(const LevelMesh& mesh, int32_t u, int32_t v, int32_t w, std::vector<Tap>* out) {
+  constexpr double kWing = -1.0 / 16;
+  const int32_t across = mesh.third(v, u);
+  if (across >= 0) {
+    out->push_back({across, kWing});
+    return;
+  }
+  out->push_back({u, kWing});
+  out->push_back({v, kWing});
+  out->push_back({w, -kWing});
+}
+
+// Triangles (a, b, x) and (b, a, y).
+void eight_point(const LevelMesh& mesh, int32_t a, int32_t b, int32_t x, int32_t y, std::vector<Tap>* out) {
+  out->push_back({a, 0.5});
+  out->push_back({b, 0.5});
+  out->push_back({x, 1.0 / 8});
+  out->push_back({y, 1.0 / 8});
+  wing(mesh, b, x, a, out);
+  wing(mesh, x, a, b, out);
+  wing(mesh, a, y, b, out);
+  wing(mesh, y, b, a, out);
+}
+
+double extraordinary_weight(int32_t k, int32_t i) {
+  if (k == 3) return i == 0 ? 5.0 / 12 : -1.0 / 12;
+  if (k == 4) return i == 0 ? 3.0 / 8 : (i == 2 ? -1.0 / 8 : 0.0);
+  const double inv_k = 1.0 / k;
+  return (0.25 + std::cos(2.0 * kPi * i * inv_k) + 0.5 * std::cos(4.0 * kPi * i * inv_k)) * inv_k;
+}
+
+// The K-valence rule of interior vertex e for its edge to o, scaled by
+// `scale`: the ring from o on, turning through the triangles (e, v_i, v_i+1).
+void extraordinary(const LevelMesh& mesh, int32_t e, int32_t o, double scale, std::vector<Tap>* out) {
+  std::vector<int32_t> ring{o};
+  bool closed = false;
+  for (int32_t step = 0; step < walk_limit(mesh, e) && !closed; ++step) {
+    const int32_t next = mesh.third(e, ring.back());
+    if (next < 0) break;
+    closed = next == o;
+    if (!closed) ring.push_back(next);
+  }
+  if (!closed) ring.clear();  // not a closed fan after all
+  const int32_t k = static_cast<int32_t>(ring.size());
+  if (k < 3) {  // no Butterfly rule for such a fan: linear
+    out->push_back({e, 0.5 * scale});
+    out->push_back({o, 0.5 * scale});
+    return;
+  }
+  double sum = 0.0;
+  for (int32_t i = 0; i < k; ++i) {
+    const double w = extraordinary_weight(k, i);
+    sum += w;
+    out->push_back({ring[i], w * scale});
+  }
+  out->push_back({e, (1.0 - sum) * scale});  // 3/4, as OpenMesh computes it
+}
+
+void interior_taps(const LevelMesh& mesh, int32_t a, int32_t b, std::vector<Tap>* out) {
+  const int32_t x = mesh.third(a, b), y = mesh.third(b, a);
+  const int32_t va = mesh.valence(a), vb = mesh.valence(b);
+  const bool ba = mesh.on_boundary(a), bb = mesh.on_boundary(b);
+  if ((va == 6 && vb == 6) || (ba && vb == 6) || (bb && va == 6) || (ba && bb)) {
+    eight_point(mesh, a, b, x, y, out);
+    return;
+  }
+  const bool irregular_a = va != 6 && !ba, irregular_b = vb != 6 && !bb;
+  const double scale = (irregular_a && irregular_b) ? 0.5 : 1.0;
+  if (irregular_a) extraordinary(mesh, a, b, scale, out);
+  if (irregular_b) extraordinary(mesh, b, a, scale, out);
+}
+
+// Sorts by vertex (insertion sort: a stencil has at most a few dozen taps),
+// sums the weights of repeated vertices, drops zeros.
+void merge(std::vector<Tap>* taps, size_t from) {
+  std::vector<Tap>& t = *taps;
+  for (size_t i = from + 1; i < t.size(); ++i) {
+    const Tap key = t[i];
+    size_t k = i;
+    for (; k > from && t[k - 1].vertex > key.vertex; --k) t[k] = t[k - 1];
+    t[k] = key;
+  }
+  size_t write = from;
+  for (size_t i = from; i < t.size();) {
+    Tap sum = t[i];
+    for (++i; i < t.size() && t[i].vertex == sum.vertex; ++i) sum.weight += t[i].weight;
+    if (sum.weight != 0.0) t[write++] = sum;
+  }
+  t.resize(write);
+}
+
+}  // namespace
+
+StatusOr<LevelMesh> LevelMesh::build(const std::vector<std::array<int32_t, 3>>& triangles, int32_t vertex_count) {
+  LevelMesh m;
+  m.begin_.assign(static_cast<size_t>(vertex_count) + 1, 0);
+  for (size_t t = 0; t < triangles.size(); ++t)
+    for (int c = 0; c < 3; ++c) {
+      const int32_t v = triangles[t][c];
+      if (v < 0 || v >= vertex_count)
+        return internal_error("level mesh triangle " + std::to_string(t) + " has corner " + std::to_string(v) +
+                              " out of range");
+      ++m.begin_[v + 1];
+    }
+  for (int32_t v = 0; v < vertex_count; ++v) m.begin_[v + 1] += m.begin_[v];
+  m.out_.resize(3 * triangles.size());
+  std::vector<uint32_t> fill(m.begin_.begin(), m.begin_.end() - 1);
+  for (const auto& t : triangles)
+    for (int c = 0; c < 3; ++c) {
+      m.out_[fill[t[c]]++] = {t[(c + 1) % 3], t[(c + 2) % 3]};
+    }
+  m.valence_.assign(vertex_count, 0);
+  m.boundary_.assign(vertex_count, 0);
+  for (int32_t a = 0; a < vertex_count; ++a) {
+    m.valence_[a] += static_cast<int32_t>(m.begin_[a + 1] - m.begin_[a]);
+    for (uint32_t i = m.begin_[a]; i < m.begin_[a + 1]; ++i) {
+      const int32_t b = m.out_[i].to;
+      for (uint32_t k = i + 1; k < m.begin_[a + 1]; ++k)
+        if (m.out_[k].to == b)
+          return invalid_mesh("level mesh uses the directed edge (" + std::to_string(a) + ", " +
+                              std::to_string(b) + ") twice (not manifold)");
+      if (m.third(b, a) >= 0) continue;
+      m.boundary_[a] = m.boundary_[b] = 1;
+      ++m.valence_[b];  // b's neighbour a has no edge b -> a
+    }
+  }
+  return m;
+}
+
+void butterfly_taps(const LevelMesh& mesh, int32_t a, int32_t b, std::vector<Tap>* taps) {
+  const size_t from = taps->size();
+  const bool forward = mesh.third(a, b) >= 0, backward = mesh.third(b, a) >= 0;
+  if (forward && backward)
+    interior_taps(mesh, a, b, taps);
+  else if (forward)
+    four_point(mesh, a, b, taps);
+  else
+    four_point(mesh, b, a, taps);
+  merge(taps, from);
+}
+
+}  // namespace srcodec

@@ -1,0 +1,207 @@
+// Lifted Butterfly wavelet transform (Schröder, Sweldens, "Spherical
+// Wavelets", SIGGRAPH 1995, §3 lifting; Zorin, Schröder, Sweldens 1996 for the
+// predict stencil; local frames as in Khodakovsky, Schröder, Sweldens,
+// "Progressive Geometry Compression", SIGGRAPH 2000, §3.2). Level j:
+//   predict  d_v = x_v - sum_i w_i x_i          (v odd, i even, stencil taps)
+//   update   x_a += u_a d_v, x_b += u_b d_v     (parent edge (a, b))
+//   frame    d_v -> (n, t, s) of the updated level-(j-1) mesh around (a, b)
+// Inverse: the same steps undone in reverse order, levels 1 .. L.
+#include "wavelet/lifting.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <Eigen/Geometry>
+
+#include "wavelet/butterfly_stencil.h"
+
+namespace srcodec {
+namespace {
+
+using Eigen::Vector3d;
+
+// Relative size below which a normal or tangent counts as degenerate.
+constexpr double kDegenerate = 1e-12;
+
+// The unit vector perpendicular to `v` (unit or not, nonzero) made with the
+// coordinate axis along which v is smallest: deterministic, never NaN.
+Vector3d perpendicular(const Vector3d& v) {
+  Vector3d axis = Vector3d::Zero();
+  Eigen::Index i = 0;
+  v.cwiseAbs().minCoeff(&i);
+  axis[i] = 1.0;
+  const Vector3d p = v.cross(axis);
+  const double len = p.norm();
+  return len > 0.0 ? Vector3d(p / len) : Vector3d(1.0, 0.0, 0.0);
+}
+
+struct Frame {
+  Vector3d n, t, s;  // normal, tangent along the parent edge, n x t
+};
+
+// Frame of the odd vertex on edge (a, b): n = sum of the area-weighted
+// normals of the triangles (a, b, l) and (b, a, r) present; t = (b - a)
+// projected off n. Degenerate pieces fall back to deterministic axes.
+Frame edge_frame(const Vector3d& a, const Vector3d& b, const Vector3d* left, const Vector3d* right) {
+  const Vector3d e = b - a;
+  Vector3d n = Vector3d::Zero();
+  double scale = e.squaredNorm();
+  if (left) {
+    n += e.cross(*left - a);
+    scale += (*left - a).squaredNorm();
+  }
+  if (right) {
+    n += (-e).cross(*right - b);
+    scale += (*right - b).squaredNorm();
+  }
+  Frame f;
+  const double n_len = n.norm();
+  const double e_len = e.norm();
+  if (n_len > kDegenerate * scale)
+    f.n = n / n_len;
+  else if (e_len > 0.0)
+    f.n = perpendicular(e);
+  else
+    f.n = Vector3d(0.0, 0.0, 1.0);
+  const Vector3d t = e - e.dot(f.n) * f.n;
+  const double t_len = t.norm();
+  f.t = t_len > kDegenerate * e_len ? Vector3d(t / t_len) : perpendicular(f.n);
+  f.s = f.n.cross(f.t);
+  return f;
+}
+
+Frame odd_frame(const LiftingPlan::Odd& o, const std::vector<Vector3d>& x) {
+  return edge_frame(x[o.a], x[o.b], o.left >= 0 ? &x[o.left] : nullptr, o.right >= 0 ? &x[o.right] : nullptr);
+}
+
+Vector3d predict(const LiftingPlan::Odd& o, const LiftingPlan::Tap* taps, const std::vector<Vector3d>& x) {
+  Vector3d p = Vector3d::Zero();
+  for (uint32_t i = o.taps_begin; i < o.taps_end; ++i) p += taps[i].weight * x[taps[i].vertex];
+  return p;
+}
+
+// The odd vertices of levels 1 .. max_level, level by level, each level in
+// increasing id order (ids are not sorted by level in adaptive hierarchies).
+std::vector<int32_t> odd_vertices_by_level(const TriangleHierarchy& h, int32_t max_level,
+                                           std::vector<uint32_t>* level_begin) {
+  level_begin->assign(static_cast<size_t>(max_level) + 1, 0);
+  const int32_t nv = h.vertex_count();
+  for (int32_t v = h.base_vertex_count(); v < nv; ++v) {
+    const int32_t l = h.vertex_level(v);
+    if (l >= 1 && l <= max_level) ++(*level_begin)[l];
+  }
+  for (int32_t l = 1; l <= max_level; ++l) (*level_begin)[l] += (*level_begin)[l - 1];
+  std::vector<uint32_t> fill(level_begin->begin(), level_begin->end() - 1);
+  std::vector<int32_t> out((*level_begin)[max_level]);
+  for (int32_t v = h.base_vertex_count(); v < nv; ++v) {
+    const int32_t l = h.vertex_level(v);
+    if (l >= 1 && l <= max_level) out[fill[l - 1]++] = v;
+  }
+  return out;
+}
+
+}  // namespace
+
+const LiftingPlan::Odd* LiftingPlan::odd_begin(int32_t level) const {
+  if (level < 1 || level > built_levels_) return odds_.data();
+  return odds_.data() + level_begin_[level - 1];
+}
+
+const LiftingPlan::Odd* LiftingPlan::odd_end(int32_t level) const {
+  if (level < 1 || level > built_levels_) return odds_.data();
+  return odds_.data() + level_begin_[level];
+}
+
+StatusOr<LiftingPlan> LiftingPlan::build(const TriangleHierarchy& hierarchy, int32_t levels) {
+  if (levels < 0) return invalid_argument("lifting: levels must be >= 0, got " + std::to_string(levels));
+  LiftingPlan plan;
+  plan.levels_ = levels;
+  plan.built_levels_ = std::min(levels, hierarchy.max_level());
+  plan.base_vertex_count_ = hierarchy.base_vertex_count();
+  plan.vertex_count_ = hierarchy.vertex_count();
+  const std::vector<int32_t> odd = odd_vertices_by_level(hierarchy, plan.built_levels_, &plan.level_begin_);
+  plan.odds_.reserve(odd.size());
+  plan.taps_.reserve(8 * odd.size());
+  for (int32_t j = 1; j <= plan.built_levels_; ++j) {
+    const uint32_t first = plan.level_begin_[j - 1], last = plan.level_begin_[j];
+    if (first == last) continue;
+    SRCODEC_ASSIGN_OR_RETURN(const LevelMesh mesh,
+                             LevelMesh::build(hierarchy.level_triangles(j - 1), plan.vertex_count_));
+    for (uint32_t k = first; k < last; ++k) {
+      Odd o;
+      o.v = odd[k];
+      const auto edge = hierarchy.parent_edge(o.v);
+      o.a = edge[0];
+      o.b = edge[1];
+      if (o.a < 0 || o.b < 0 || !mesh.has_edge(o.a, o.b))
+        return internal_error("lifting: parent edge (" + std::to_string(o.a) + ", " + std::to_string(o.b) +
+                              ") of vertex " + std::to_string(o.v) + " is not an edge of the level-" +
+                              std::to_string(j - 1) + " mesh");
+      o.left = mesh.third(o.a, o.b);
+      o.right = mesh.third(o.b, o.a);
+      o.update_a = kUpdateWeight / mesh.valence(o.a);
+      o.update_b = kUpdateWeight / mesh.valence(o.b);
+      o.taps_begin = static_cast<uint32_t>(plan.taps_.size());
+      butterfly_taps(mesh, o.a, o.b, &plan.taps_);
+      o.taps_end = static_cast<uint32_t>(plan.taps_.size());
+      plan.odds_.push_back(o);
+    }
+  }
+  return plan;
+}
+
+WaveletCoefficients forward_lifting(const LiftingPlan& plan, const std::vector<Vector3d>& positions) {
+  const size_t nv = static_cast<size_t>(plan.vertex_count());
+  std::vector<Vector3d> x(nv, Vector3d::Zero());
+  std::copy_n(positions.begin(), std::min(nv, positions.size()), x.begin());
+  WaveletCoefficients out;
+  out.detail.assign(nv, Vector3d::Zero());
+  const LiftingPlan::Tap* taps = plan.taps().data();
+  for (int32_t j = plan.levels(); j >= 1; --j) {
+    const LiftingPlan::Odd* begin = plan.odd_begin(j);
+    const LiftingPlan::Odd* end = plan.odd_end(j);
+    for (const auto* o = begin; o != end; ++o) out.detail[o->v] = x[o->v] - predict(*o, taps, x);
+    for (const auto* o = begin; o != end; ++o) {
+      const Vector3d& d = out.detail[o->v];
+      x[o->a] += o->update_a * d;
+      x[o->b] += o->update_b * d;
+    }
+    for (const auto* o = begin; o != end; ++o) {
+      const Frame f = odd_frame(*o, x);
+      Vector3d& d = out.detail[o->v];
+      d = Vector3d(f.n.dot(d), f.t.dot(d), f.s.dot(d));
+    }
+  }
+  out.base.assign(x.begin(), x.begin() + plan.base_vertex_count());
+  return out;
+}
+
+std::vector<Vector3d> inverse_lifting(const LiftingPlan& plan, const std::vector<Vector3d>& base,
+                                      const std::vector<Vector3d>& detail, int32_t level) {
+  const size_t nv = static_cast<size_t>(plan.vertex_count());
+  std::vector<Vector3d> x(nv, Vector3d::Zero());
+  std::copy_n(base.begin(), std::min({nv, base.size(), static_cast<size_t>(plan.base_vertex_count())}), x.begin());
+  level = std::clamp(level, 0, plan.levels());
+  const LiftingPlan::Tap* taps = plan.taps().data();
+  std::vector<Vector3d> world;
+  for (int32_t j = 1; j <= level; ++j) {
+    const LiftingPlan::Odd* begin = plan.odd_begin(j);
+    const LiftingPlan::Odd* end = plan.odd_end(j);
+    world.resize(static_cast<size_t>(end - begin));
+    for (const auto* o = begin; o != end; ++o) {
+      const Frame f = odd_frame(*o, x);
+      const Vector3d d = static_cast<size_t>(o->v) < detail.size() ? detail[o->v] : Vector3d::Zero();
+      world[o - begin] = d.x() * f.n + d.y() * f.t + d.z() * f.s;
+    }
+    for (const auto* o = begin; o != end; ++o) {
+      const Vector3d& d = world[o - begin];
+      x[o->a] -= o->update_a * d;
+      x[o->b] -= o->update_b * d;
+    }
+    for (const auto* o = begin; o != end; ++o) x[o->v] = predict(*o, taps, x) + world[o - begin];
+  }
+  return x;
+}
+
+}  // namespace srcodec

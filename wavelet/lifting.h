@@ -1,0 +1,89 @@
+// Lifted Butterfly wavelet transform on adaptive semi-regular hierarchies
+// (DESIGN.md wavelet/): predict with the modified Butterfly stencil (Zorin,
+// Schröder, Sweldens 1996), update the even vertices (Schröder, Sweldens 1995
+// lifting), and express each detail in a local frame of the coarser level
+// (Khodakovsky, Schröder, Sweldens 2000). See wavelet/README.md for the rules.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <vector>
+
+#include "format/status.h"
+#include "remesh/hierarchy.h"
+
+namespace srcodec {
+
+// Every even vertex a moves by kUpdateWeight / valence(a) times each detail on
+// its edges: 3/4 of the mean detail around it, which is u = 1/8 per edge at
+// valence 6, the weight that keeps the mean position of a regular level
+// unchanged (README.md, "Update").
+inline constexpr double kUpdateWeight = 0.75;
+
+// Connectivity-only precomputation for one hierarchy, shared by encoder and
+// decoder: it depends only on the TriangleHierarchy, never on positions.
+// Flat arrays: per level, its odd vertices in increasing id order, each with
+// its prediction stencil (vertex ids + weights), its parent edge with the
+// update weights of both ends, and the third corners of the one or two
+// triangles on that edge (for the frame).
+class LiftingPlan {
+ public:
+  // `levels` = finest level to transform (>= hierarchy.max_level() is fine;
+  // vertices of levels above it get no coefficient). Fails on levels < 0 or a
+  // hierarchy whose level meshes are not manifold.
+  static StatusOr<LiftingPlan> build(const TriangleHierarchy& hierarchy, int32_t levels);
+
+  int32_t levels() const { return levels_; }
+  int32_t base_vertex_count() const { return base_vertex_count_; }
+  int32_t vertex_count() const { return vertex_count_; }
+
+  struct Tap {
+    int32_t vertex;
+    double weight;
+  };
+  // One vertex of level j >= 1, with everything its level step needs.
+  struct Odd {
+    int32_t v = -1;
+    int32_t a = -1, b = -1;          // parent edge, as hierarchy.parent_edge(v)
+    int32_t left = -1, right = -1;   // third corner of the level-(j-1) triangle on (a, b) / on (b, a); -1 if none
+    double update_a = 0, update_b = 0;
+    uint32_t taps_begin = 0, taps_end = 0;  // into taps()
+  };
+  // The odd vertices of level j (1 <= j <= levels(); empty beyond max_level).
+  const Odd* odd_begin(int32_t level) const;
+  const Odd* odd_end(int32_t level) const;
+  const std::vector<Tap>& taps() const { return taps_; }
+
+ private:
+  int32_t levels_ = 0;
+  int32_t built_levels_ = 0;  // min(levels_, hierarchy.max_level())
+  int32_t base_vertex_count_ = 0;
+  int32_t vertex_count_ = 0;
+  std::vector<Odd> odds_;               // level by level
+  std::vector<uint32_t> level_begin_;   // odds of level j: [level_begin_[j-1], level_begin_[j])
+  std::vector<Tap> taps_;
+};
+
+struct WaveletCoefficients {
+  // Per base vertex (ids 0 .. base_vertex_count - 1): its level-0
+  // approximation after all update steps, world coordinates.
+  std::vector<Eigen::Vector3d> base;
+  // Per hierarchy vertex id (size hierarchy.vertex_count()): zero for base
+  // vertices (and for vertices above plan.levels()); for a vertex of level
+  // j >= 1 its detail in the local frame of the level-(j-1) reconstruction:
+  // x = normal, y = tangent along the parent edge, z = n x y.
+  std::vector<Eigen::Vector3d> detail;
+};
+
+// `positions` has one entry per hierarchy vertex (missing entries count as 0).
+WaveletCoefficients forward_lifting(const LiftingPlan& plan, const std::vector<Eigen::Vector3d>& positions);
+
+// Reconstructs the positions of every vertex of level <= `level`
+// (0 .. plan.levels(), clamped); entries of finer vertices are zero. `base`
+// has base_vertex_count entries, `detail` vertex_count entries (missing
+// entries count as 0; details of levels > level are ignored).
+std::vector<Eigen::Vector3d> inverse_lifting(const LiftingPlan& plan, const std::vector<Eigen::Vector3d>& base,
+                                             const std::vector<Eigen::Vector3d>& detail, int32_t level);
+
+}  // namespace srcodec
