@@ -1,0 +1,183 @@
+// Binary range coder after G. N. N. Martin, "Range encoding: an algorithm for
+// removing redundancy from a digitised message" (1979), in the byte-oriented
+// form with carry propagation through a cached byte and a count of pending
+// 0xFF bytes, as in LZMA's rc (I. Pavlov). Probabilities are held with 16-bit
+// precision (P(0) = p / 65536) and the split is bound = (range >> 16) * p;
+// range >= 2^24 keeps the split within 1/256 of the ideal.
+//
+// Flush: the final interval [low, low + range) has range >= 2^24. finish()
+// writes the shortest prefix V (1 or 2 more bytes beyond the carried ones) such
+// that EVERY continuation V, x, y, ... lies inside that interval. A decoder that
+// pads with zeros therefore decodes every symbol, and even a decoder that does
+// not know the padding (ok() below) sees every symbol as determined.
+//
+// ok(): the decoder tracks slack = the largest value the unknown bytes past the
+// end could add to its code register. A 0 decision (code < bound) is
+// determined only if code + slack < bound; a 1 decision (code >= bound) always
+// is, since the unknown bytes only add. The same for raw bits.
+#include "codec/range_coder.h"
+
+#include <cassert>
+
+namespace srcodec {
+namespace {
+
+constexpr uint32_t kTopValue = 1u << 24;  // normalize when range drops below
+constexpr int kModelBits = 16;
+constexpr uint32_t kModelOne = 1u << kModelBits;
+constexpr int kMaxShift = 7;  // slowest adaptation: rate 1/128 (6 and 5 cost 0.3% and 1.1% in bitplane_test)
+constexpr uint64_t kMaxSlack = 1ull << 40;  // saturation; anything >= 2^32 decides nothing
+
+// Adaptation shift after `seen` symbols: about log2(seen + 2), i.e. a rate
+// near 1/(seen + 2) (a running mean) until it reaches 2^-kMaxShift.
+constexpr int shift_for(int seen) {
+  int s = 1;
+  while (s < kMaxShift && (1 << s) + (1 << (s - 1)) <= seen + 2) ++s;
+  return s;
+}
+// Models stop counting once the rate is final.
+constexpr int kSeenLimit = [] {
+  int n = 0;
+  while (shift_for(n) < kMaxShift) ++n;
+  return n;
+}();
+static_assert(kSeenLimit < 255, "seen counter must fit in uint8_t");
+
+inline void update(BitModel& m, int bit) {
+  const int s = shift_for(m.seen);
+  if (bit) {
+    m.p = static_cast<uint16_t>(m.p - (m.p >> s));
+  } else {
+    m.p = static_cast<uint16_t>(m.p + ((kModelOne - m.p) >> s));
+  }
+  if (m.seen < kSeenLimit) ++m.seen;
+}
+
+}  // namespace
+
+void ArithmeticEncoder::put_byte(uint8_t b) {
+  if (!dropped_first_) {  // LZMA's leading byte: always 0, carry never reaches it
+    assert(b == 0);
+    dropped_first_ = true;
+    return;
+  }
+  out_.push_back(b);
+}
+
+void ArithmeticEncoder::shift_low() {
+  if (low_ < 0xFF000000u || low_ > 0xFFFFFFFFu) {
+    const uint8_t carry = static_cast<uint8_t>(low_ >> 32);
+    put_byte(static_cast<uint8_t>(cache_ + carry));
+    for (; pending_ff_ > 0; --pending_ff_) put_byte(static_cast<uint8_t>(0xFF + carry));
+    cache_ = static_cast<uint8_t>(low_ >> 24);
+  } else {
+    ++pending_ff_;  // top byte 0xFF: a later carry would turn it to 0x00
+  }
+  low_ = (low_ & 0x00FFFFFFu) << 8;
+}
+
+void ArithmeticEncoder::encode(int bit, BitModel& model) {
+  const uint32_t bound = (range_ >> kModelBits) * model.p;
+  if (bit == 0) {
+    range_ = bound;
+  } else {
+    low_ += bound;
+    range_ -= bound;
+  }
+  update(model, bit != 0);
+  ++symbols_;
+  while (range_ < kTopValue) {
+    range_ <<= 8;
+    shift_low();
+  }
+}
+
+void ArithmeticEncoder::encode_raw(uint32_t value, int bits) {
+  assert(bits >= 0 && bits <= 32);
+  for (int i = bits - 1; i >= 0; --i) {
+    range_ >>= 1;
+    if ((value >> i) & 1u) low_ += range_;
+    ++symbols_;
+    while (range_ < kTopValue) {
+      range_ <<= 8;
+      shift_low();
+    }
+  }
+}
+
+std::vector<uint8_t> ArithmeticEncoder::finish() {
+  if (symbols_ == 0) return {};
+  // Shortest k such that an aligned block of 2^(32 - 8k) code values starting
+  // at V fits in [low, low + range): then V's top k bytes pin every symbol.
+  // k = 2 always fits because range >= 2^24 > 2 * 2^16.
+  int k = 1;
+  uint64_t v = 0;
+  for (; k <= 4; ++k) {
+    const uint64_t mask = (uint64_t{1} << (32 - 8 * k)) - 1;
+    v = (low_ + mask) & ~mask;
+    if (v + mask <= low_ + range_ - 1) break;
+  }
+  assert(k <= 2);
+  low_ = v;
+  for (int i = 0; i <= k; ++i) shift_low();  // k bytes of V, then flush the cache
+  symbols_ = 0;
+  return std::move(out_);
+}
+
+ArithmeticDecoder::ArithmeticDecoder(const uint8_t* data, size_t size)
+    : data_(data), size_(data == nullptr ? 0 : size) {
+  for (int i = 0; i < 4; ++i) code_ = (code_ << 8) | next_byte();
+}
+
+uint8_t ArithmeticDecoder::next_byte() {
+  if (pos_ < size_) {
+    slack_ <<= 8;  // stays 0: real bytes come before any missing one
+    return data_[pos_++];
+  }
+  slack_ = slack_ >= kMaxSlack ? kMaxSlack : (slack_ << 8) | 0xFFu;
+  return 0;
+}
+
+void ArithmeticDecoder::normalize() {
+  while (range_ < kTopValue) {
+    range_ <<= 8;
+    code_ = (code_ << 8) | next_byte();
+  }
+}
+
+int ArithmeticDecoder::decode(BitModel& model) {
+  const uint32_t bound = (range_ >> kModelBits) * model.p;
+  int bit;
+  if (code_ < bound) {
+    if (slack_ != 0 && uint64_t{code_} + slack_ >= bound) ok_ = false;
+    range_ = bound;
+    bit = 0;
+  } else {
+    code_ -= bound;
+    range_ -= bound;
+    bit = 1;
+  }
+  update(model, bit);
+  normalize();
+  return bit;
+}
+
+uint32_t ArithmeticDecoder::decode_raw(int bits) {
+  assert(bits >= 0 && bits <= 32);
+  uint32_t value = 0;
+  for (int i = 0; i < bits; ++i) {
+    range_ >>= 1;
+    uint32_t bit = 0;
+    if (code_ >= range_) {
+      code_ -= range_;
+      bit = 1;
+    } else if (slack_ != 0 && uint64_t{code_} + slack_ >= range_) {
+      ok_ = false;
+    }
+    value = (value << 1) | bit;
+    normalize();
+  }
+  return value;
+}
+
+}  // namespace srcodec
