@@ -1,6 +1,7 @@
 // `srcodec info MESH`: what the file holds as read, and after srcodec's cleaning.
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <memory>
 
@@ -71,7 +72,15 @@ void print_table(const std::string& path, const MeshStats& raw, const MeshStats&
               r.unreferenced_vertices);
 }
 
+// An .srm file is recognized by its first bytes, whatever its name.
+bool is_srm_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  char magic[4] = {};
+  return in.read(magic, 4) && magic[0] == '\x89' && magic[1] == 'S' && magic[2] == 'R' && magic[3] == 'M';
+}
+
 Status run_info(const InfoOptions& o) {
+  if (is_srm_file(o.path)) return print_srm_info(o.path, o.json);
   SRCODEC_ASSIGN_OR_RETURN(PolygonMesh raw, read_polygon_mesh(o.path));
   CleanReport report;
   const TriangleMesh clean = clean_mesh(raw, &report);
@@ -102,8 +111,8 @@ Status run_info(const InfoOptions& o) {
 
 Command add_info_command(CLI::App& app) {
   auto options = std::make_shared<InfoOptions>();
-  CLI::App* cmd = app.add_subcommand("info", "Print a mesh's size, topology and defects, as read and after cleaning");
-  cmd->add_option("mesh", options->path, "Mesh file (.obj .off .ply .stl)")->required();
+  CLI::App* cmd = app.add_subcommand("info", "Print a mesh's size, topology and defects (as read and after cleaning), or an .srm file's header and byte budget");
+  cmd->add_option("mesh", options->path, "Mesh file (.obj .off .ply .stl) or .srm file")->required();
   cmd->add_flag("--json", options->json, "Print one JSON object instead of a table");
   return {cmd, [options] { return run_info(*options); }};
 }

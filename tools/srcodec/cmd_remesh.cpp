@@ -13,49 +13,20 @@
 #include "tools/measure/surface_distance.h"
 #include "tools/srcodec/commands.h"
 #include "tools/srcodec/json_writer.h"
+#include "tools/srcodec/remesh_flags.h"
 
 namespace srcodec {
 namespace {
 
 struct RemeshCliOptions {
-  std::string input, output, write_levels, oversample = "auto", scheme = "butterfly";
-  int levels = 4;
-  size_t base_vertices = 0;
-  double threshold = -1.0;
-  bool uniform = false, json = false, quiet = false;
+  std::string input, output, write_levels;
+  RemeshFlags remesh;
+  bool json = false, quiet = false;
   size_t samples = 200000;
 };
 
-StatusOr<RemeshOptions> to_options(const RemeshCliOptions& o) {
-  RemeshOptions r;
-  r.levels = o.levels;
-  r.base_vertices = o.base_vertices;
-  if (o.uniform && o.threshold >= 0.0)
-    return invalid_argument("--uniform and --threshold exclude each other (uniform is threshold 0 with every "
-                            "triangle split)");
-  // Without --threshold the remesh is uniform; every cell holds at least its
-  // own site's vertex, so epsilon 0 would split everything anyway.
-  r.uniform = o.uniform || o.threshold < 0.0;
-  r.threshold = std::max(o.threshold, 0.0);
-  if (o.oversample == "auto") {
-    r.oversample = -1;
-  } else if (o.oversample.size() == 1 && o.oversample[0] >= '0' && o.oversample[0] <= '3') {
-    r.oversample = o.oversample[0] - '0';
-  } else {
-    return invalid_argument("--oversample " + o.oversample + ": use auto, 0, 1, 2 or 3");
-  }
-  if (o.scheme == "butterfly") {
-    r.scheme = OversampleScheme::kButterfly;
-  } else if (o.scheme == "loop") {
-    r.scheme = OversampleScheme::kLoop;
-  } else {
-    return invalid_argument("--scheme " + o.scheme + ": use butterfly or loop");
-  }
-  return r;
-}
-
 Status run_remesh(const RemeshCliOptions& o) {
-  SRCODEC_ASSIGN_OR_RETURN(RemeshOptions options, to_options(o));
+  SRCODEC_ASSIGN_OR_RETURN(RemeshOptions options, to_remesh_options(o.remesh));
   SRCODEC_RETURN_IF_ERROR(check_output_path(o.output));
   if (!o.write_levels.empty()) SRCODEC_RETURN_IF_ERROR(check_output_path(o.write_levels + "_l0.obj"));
   if (!o.quiet) options.progress = [](const std::string& line) { std::cerr << "remesh: " << line << std::endl; };
@@ -144,19 +115,7 @@ Command add_remesh_command(CLI::App& app) {
       "remesh", "Adaptive semi-regular remeshing (Voronoi/Lloyd, Kammoun-Payan-Antonini) with per-level error");
   cmd->add_option("mesh", o->input, "Input mesh (OBJ, PLY, OFF, STL)")->required();
   cmd->add_option("-o,--output", o->output, "Finest level, written as OBJ or PLY")->required();
-  cmd->add_option("--levels", o->levels, "Refinement levels above the base mesh")
-      ->check(CLI::Range(0, 12))
-      ->capture_default_str();
-  cmd->add_option("--base-vertices", o->base_vertices,
-                  "Base mesh vertices (default: from the input size and levels, 100..4000; see README)");
-  auto* threshold = cmd->add_option("--threshold", o->threshold,
-                                    "Adaptive: split a triangle only when each corner's Voronoi cell holds more "
-                                    "than this many (oversampled) input vertices (Eq. 5)");
-  threshold->check(CLI::NonNegativeNumber);
-  cmd->add_flag("--uniform", o->uniform, "Split every triangle (the default without --threshold)")->excludes(threshold);
-  cmd->add_option("--oversample", o->oversample, "Subdivision steps before remeshing: auto, 0, 1, 2 or 3")
-      ->capture_default_str();
-  cmd->add_option("--scheme", o->scheme, "Oversampling scheme: butterfly or loop")->capture_default_str();
+  add_remesh_flags(cmd, o->remesh);
   cmd->add_option("--write-levels", o->write_levels, "Also write every level to PREFIX_l<level>.obj");
   cmd->add_option("--samples", o->samples, "Samples per surface for the error figures")
       ->check(CLI::Range(size_t{1000}, size_t{100000000}))

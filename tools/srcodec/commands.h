@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include <functional>
+#include <string>
 
 #include "format/status.h"
 
@@ -20,5 +21,10 @@ Command add_compare_command(CLI::App& app);
 Command add_draco_command(CLI::App& app);
 Command add_remesh_command(CLI::App& app);
 Command add_subdivide_command(CLI::App& app);
+Command add_encode_command(CLI::App& app);
+Command add_decode_command(CLI::App& app);
+
+// `info` on an .srm file (srm_info.cpp).
+Status print_srm_info(const std::string& path, bool json);
 
 }  // namespace srcodec

@@ -15,6 +15,8 @@ int main(int argc, char** argv) {
       srcodec::add_draco_command(app),
       srcodec::add_remesh_command(app),
       srcodec::add_subdivide_command(app),
+      srcodec::add_encode_command(app),
+      srcodec::add_decode_command(app),
   };
 
   try {

@@ -1,0 +1,259 @@
+#include "codec/srm_codec.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "codec/base_mesh_coder.h"
+#include "codec/bitplane.h"
+#include "codec/flags_coder.h"
+#include "wavelet/lifting.h"
+
+namespace srcodec {
+namespace {
+
+constexpr int32_t kMaxQuantized = (1 << kSrmMaxPlane) - 1;
+
+// The coefficient forest of a hierarchy up to `levels`: three nodes (one per
+// component) per base vertex (f = 0, the base residual), then per vertex of
+// level 1, 2, ... in id order. The tree parent of a level-j vertex (j >= 2)
+// is the endpoint of its parent edge with the higher level (the newer one,
+// always of level j - 1), ties to the higher id; level-1 vertices are roots.
+struct ForestLayout {
+  CoefficientForest forest;
+  std::vector<int32_t> vertex;   // per node / 3: the hierarchy vertex
+  std::vector<int32_t> first_node;  // per hierarchy vertex: its x node, -1 when above `levels`
+};
+
+ForestLayout build_forest(const TriangleHierarchy& h, int levels) {
+  ForestLayout out;
+  std::vector<std::vector<int32_t>> by_level(levels + 1);
+  for (int32_t v = 0; v < h.vertex_count(); ++v) {
+    const int32_t l = h.vertex_level(v);
+    if (l <= levels) by_level[l].push_back(v);
+  }
+  out.first_node.assign(h.vertex_count(), -1);
+  for (int f = 0; f <= levels; ++f) {
+    for (int32_t v : by_level[f]) {
+      int32_t parent = -1;
+      if (f >= 2) {
+        const auto e = h.parent_edge(v);
+        const int32_t la = h.vertex_level(e[0]), lb = h.vertex_level(e[1]);
+        const int32_t p = (la != lb) ? (la > lb ? e[0] : e[1]) : std::max(e[0], e[1]);
+        parent = out.first_node[p];
+      }
+      out.first_node[v] = static_cast<int32_t>(out.forest.parent.size());
+      out.vertex.push_back(v);
+      for (int c = 0; c < kSrmComponents; ++c) {
+        out.forest.parent.push_back(parent < 0 ? -1 : parent + c);
+        out.forest.level.push_back(static_cast<uint8_t>(f + 1));
+        out.forest.context_class.push_back(static_cast<uint8_t>(f * kSrmComponents + c));
+      }
+    }
+  }
+  return out;
+}
+
+std::vector<float> level_scales(int levels, double tangential_factor) {
+  std::vector<float> s;
+  for (int f = 0; f <= levels; ++f) {
+    // A level-f coefficient moves an area ~4^-f of the surface: for the L2
+    // error to cost the same per bit everywhere, its step grows as 2^f.
+    // The base residual (f = 0) moves the most surface and gets the finest.
+    const double normal = std::ldexp(1.0, f - levels);
+    s.push_back(static_cast<float>(normal));
+    const double tangential = f == 0 ? normal : normal * tangential_factor;
+    s.push_back(static_cast<float>(tangential));
+    s.push_back(static_cast<float>(tangential));
+  }
+  return s;
+}
+
+QuantizationGrid grid_of(const SrmHeader& h) {
+  QuantizationGrid g;
+  g.origin = h.bbox_min;
+  g.step = h.grid_step;
+  g.bits = h.base_bits;
+  return g;
+}
+
+double component(const Eigen::Vector3d& v, int c) { return v[c]; }
+
+}  // namespace
+
+StatusOr<EncodedSrm> encode_srm(const SemiRegularMesh& mesh, const TriangleMesh& input, const EncodeOptions& options) {
+  if (input.positions.empty()) return invalid_argument("encode: the input mesh has no vertices");
+  if (!(options.step_fraction > 0.0) || !(options.tangential_factor > 0.0))
+    return invalid_argument("encode: the quantizer step and tangential factor must be positive");
+  if (options.base_bits < 4 || options.base_bits > 24)
+    return invalid_argument("encode: base position bits must be 4..24");
+  const int levels = mesh.levels;
+  if (levels < 0 || levels > kSrmMaxLevels)
+    return invalid_argument("encode: " + std::to_string(levels) + " levels; the format holds 0.." +
+                            std::to_string(kSrmMaxLevels));
+  SrmHeader h;
+  h.input_vertices = input.positions.size();
+  h.input_triangles = input.triangles.size();
+  h.bbox_min = h.bbox_max = input.positions[0];
+  for (const auto& p : input.positions) {
+    h.bbox_min = h.bbox_min.cwiseMin(p);
+    h.bbox_max = h.bbox_max.cwiseMax(p);
+  }
+  const double extent = (h.bbox_max - h.bbox_min).maxCoeff();
+  const double diagonal = (h.bbox_max - h.bbox_min).norm();
+  h.levels = levels;
+  h.base_bits = options.base_bits;
+  h.grid_step = extent > 0 ? extent / ((1 << options.base_bits) - 1) : 1.0;
+  h.quant_step = diagonal > 0 ? diagonal * options.step_fraction : options.step_fraction;
+  h.scales = level_scales(levels, options.tangential_factor);
+
+  const int32_t nbase = mesh.hierarchy.base_vertex_count();
+  // The base mesh carries the level-0 approximation (base vertices after the
+  // update steps), not the base vertices' own positions: the transform on the
+  // remesher's numbering gives it before the replay renumbers everything.
+  StatusOr<LiftingPlan> original_plan = LiftingPlan::build(mesh.hierarchy, levels);
+  if (!original_plan.ok()) return original_plan.status().with_context("encode: wavelet plan");
+  const std::vector<Eigen::Vector3d> approximation = forward_lifting(original_plan.value(), mesh.positions).base;
+  StatusOr<BaseMeshCode> base = encode_base_mesh(approximation, mesh.base.triangles, grid_of(h));
+  if (!base.ok()) return base.status().with_context("encode: base mesh");
+  StatusOr<ReplayedHierarchy> replay = encode_refinement(mesh.hierarchy, levels, base->triangles,
+                                                         base->new_to_old_vertex, base->new_to_old_triangle);
+  if (!replay.ok()) return replay.status().with_context("encode");
+  const TriangleHierarchy& hier = replay->hierarchy;
+  h.base_vertices = nbase;
+  h.base_triangles = base->triangles.size();
+  h.level_vertices.assign(levels + 1, 0);
+  for (int32_t v = 0; v < hier.vertex_count(); ++v) ++h.level_vertices[hier.vertex_level(v)];
+
+  std::vector<Eigen::Vector3d> positions(hier.vertex_count());
+  for (int32_t v = 0; v < hier.vertex_count(); ++v) positions[v] = mesh.positions[replay->to_original_vertex[v]];
+  StatusOr<LiftingPlan> plan = LiftingPlan::build(hier, levels);
+  if (!plan.ok()) return plan.status().with_context("encode: wavelet plan");
+  const WaveletCoefficients coeffs = forward_lifting(plan.value(), positions);
+
+  const ForestLayout layout = build_forest(hier, levels);
+  std::vector<int32_t> q(layout.forest.parent.size());
+  for (size_t node = 0; node < q.size(); ++node) {
+    const int32_t v = layout.vertex[node / kSrmComponents];
+    const int c = static_cast<int>(node % kSrmComponents);
+    const int f = hier.vertex_level(v);
+    const double value = f == 0 ? component(coeffs.base[v] - base->positions[v], c) : component(coeffs.detail[v], c);
+    const double steps = std::abs(value) / (h.quant_step * h.scales[f * kSrmComponents + c]);
+    const int32_t m = static_cast<int32_t>(std::min<double>(std::floor(steps), kMaxQuantized));
+    q[node] = value < 0 ? -m : m;
+  }
+  const BitplaneStream stream = encode_bitplanes(layout.forest, q);
+  h.top_plane = stream.top_plane;
+  std::vector<std::vector<uint8_t>> segments(static_cast<size_t>(h.top_plane + 1) * (levels + 1));
+  for (const BitplaneSegment& s : stream.segments) {
+    if (s.plane > h.top_plane || s.plane < 0 || s.level < 1 || s.level > levels + 1)
+      return internal_error("encode: the bit-plane coder made a segment outside the table");
+    segments[h.segment_index(s.plane, s.level - 1)] = s.bytes;
+  }
+  EncodedSrm out;
+  out.bytes = write_srm(h, base->bytes, replay->flags, segments);
+  StatusOr<SrmFile> parsed = parse_srm(out.bytes.data(), out.bytes.size());
+  if (!parsed.ok()) return parsed.status().with_context("encode: re-reading its own file");
+  out.header = parsed->header;
+  out.header_size = parsed->header_size;
+  return out;
+}
+
+namespace {
+
+Status need_complete(const SrmChunk& c, const std::string& what, uint64_t file_size) {
+  if (!c.complete())
+    return parse_error("the file ends at byte " + std::to_string(file_size) + ", inside " + what + " (bytes " +
+                       std::to_string(c.offset) + ".." + std::to_string(c.offset + c.declared - 1) +
+                       "): at least the first " + std::to_string(c.offset + c.declared) + " bytes are needed");
+  return verify_chunk(c, false, what);
+}
+
+// Replays the flags up to `level`; returns the level reached (lower when the
+// file was cut inside a flag chunk).
+StatusOr<int> decode_hierarchy(const SrmFile& file, int level, TriangleHierarchy& h, uint64_t max_vertices) {
+  for (int j = 0; j < level; ++j) {
+    const SrmChunk& c = file.flags[j];
+    if (!c.complete()) return j;
+    const std::string what = "the flags of level " + std::to_string(j);
+    SRCODEC_RETURN_IF_ERROR(verify_chunk(c, false, what));
+    SRCODEC_RETURN_IF_ERROR(decode_refinement_level(h, j, c.bytes.data(), c.bytes.size(), max_vertices));
+    uint64_t created = 0;
+    for (int32_t v = 0; v < h.vertex_count(); ++v) created += h.vertex_level(v) == j + 1;
+    if (created != file.header.level_vertices[j + 1])
+      return parse_error(what + " make " + std::to_string(created) + " vertices of level " + std::to_string(j + 1) +
+                         ", the header says " + std::to_string(file.header.level_vertices[j + 1]) +
+                         ": the file is corrupt");
+  }
+  return level;
+}
+
+}  // namespace
+
+StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const DecodeOptions& options) {
+  const SrmHeader& h = file.header;
+  int level = options.level < 0 ? h.levels : std::min(options.level, h.levels);
+  uint64_t total = 0;
+  for (int j = 0; j <= level; ++j) total += std::min<uint64_t>(h.level_vertices[j], options.max_vertices + 1);
+  if (total > options.max_vertices)
+    return invalid_argument("level " + std::to_string(level) + " has " + std::to_string(total) +
+                            " vertices, over the limit of " + std::to_string(options.max_vertices));
+  SRCODEC_RETURN_IF_ERROR(need_complete(file.base, "the base mesh", file.file_size));
+  StatusOr<DecodedBaseMesh> base = decode_base_mesh(file.base.bytes.data(), file.base.bytes.size(), grid_of(h),
+                                                    h.base_vertices, h.base_triangles);
+  if (!base.ok()) return base.status().with_context("base mesh at byte " + std::to_string(file.base.offset));
+  if (base->positions.size() != h.base_vertices || base->triangles.size() != h.base_triangles)
+    return parse_error("the base mesh has other counts than the header: the file is corrupt");
+  StatusOr<TriangleHierarchy> created =
+      TriangleHierarchy::create(static_cast<int32_t>(h.base_vertices), base->triangles);
+  if (!created.ok()) return created.status().with_context("the base mesh is not valid");
+  TriangleHierarchy& hier = created.value();
+  StatusOr<int> reached = decode_hierarchy(file, level, hier, options.max_vertices);
+  if (!reached.ok()) return reached.status();
+  level = reached.value();
+
+  DecodedSrm out;
+  out.level = level;
+  out.base_vertices = h.base_vertices;
+  out.bytes_used = file.base.offset + file.base.declared;
+  for (int j = 0; j < level; ++j) out.bytes_used = file.flags[j].offset + file.flags[j].declared;
+  const ForestLayout layout = build_forest(hier, level);
+  std::vector<BitplaneSegmentView> views;
+  for (int p = h.top_plane; p >= 0; --p) {
+    bool cut = false;
+    for (int f = 0; f <= level && !cut; ++f) {
+      const SrmChunk& c = file.segments[h.segment_index(p, f)];
+      SRCODEC_RETURN_IF_ERROR(verify_chunk(c, true, "segment (plane " + std::to_string(p) + ", level " +
+                                                        std::to_string(f) + ")"));
+      views.push_back({p, f + 1, c.bytes.data(), c.bytes.size()});
+      if (!c.complete()) cut = true;
+      if (!c.bytes.empty()) out.bytes_used = std::max<uint64_t>(out.bytes_used, c.offset + c.bytes.size());
+    }
+    if (cut) break;
+    out.last_plane = p;
+  }
+  BitplaneDecodeStats stats;
+  StatusOr<std::vector<double>> values = decode_bitplanes(layout.forest, h.top_plane, views, level + 1, &stats);
+  if (!values.ok()) return values.status().with_context("coefficients");
+
+  std::vector<Eigen::Vector3d> base_positions = base->positions;
+  std::vector<Eigen::Vector3d> detail(hier.vertex_count(), Eigen::Vector3d::Zero());
+  for (size_t node = 0; node < values->size(); ++node) {
+    const int32_t v = layout.vertex[node / kSrmComponents];
+    const int c = static_cast<int>(node % kSrmComponents);
+    const int f = hier.vertex_level(v);
+    const double value = values.value()[node] * h.quant_step * h.scales[f * kSrmComponents + c];
+    if (f == 0)
+      base_positions[v][c] += value;
+    else
+      detail[v][c] = value;
+  }
+  StatusOr<LiftingPlan> plan = LiftingPlan::build(hier, level);
+  if (!plan.ok()) return plan.status().with_context("wavelet plan");
+  std::vector<Eigen::Vector3d> positions = inverse_lifting(plan.value(), base_positions, detail, level);
+
+  SemiRegularMesh decoded{{base->positions, base->triangles}, std::move(hier), std::move(positions), level};
+  out.mesh = decoded.level_mesh(level);
+  return out;
+}
+
+}  // namespace srcodec

@@ -1,0 +1,59 @@
+// The whole codec between a semi-regular mesh and .srm bytes (DESIGN.md data
+// flow): base mesh coding, refinement flags, the lifted Butterfly transform,
+// dead-zone quantization scaled per level and component, and embedded
+// bit-plane coding, in the container of format/srm_file.h.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "format/mesh.h"
+#include "format/srm_file.h"
+#include "format/status.h"
+#include "remesh/semi_regular_mesh.h"
+
+namespace srcodec {
+
+struct EncodeOptions {
+  // The finest quantizer step of the full stream, as a fraction of the input's
+  // bounding-box diagonal: far below any remeshing error, since rate control
+  // truncates the embedded stream rather than re-quantizing.
+  double step_fraction = 1.0 / 65536.0;
+  // Tangential detail components move vertices along the surface, which
+  // changes the surface distance little, so they get a coarser step.
+  double tangential_factor = 4.0;
+  // Base positions are coded on a grid of this many bits per coordinate; the
+  // embedded stream refines them further (the base residual, level f = 0).
+  int base_bits = 10;
+};
+
+struct EncodedSrm {
+  std::vector<uint8_t> bytes;  // the full file
+  SrmHeader header;
+  uint64_t header_size = 0;
+};
+
+// `input` is the original (cleaned) mesh: its counts and bounding box go in
+// the header, for bits per vertex and PSNR.
+StatusOr<EncodedSrm> encode_srm(const SemiRegularMesh& mesh, const TriangleMesh& input,
+                                const EncodeOptions& options = {});
+
+struct DecodeOptions {
+  int level = -1;                          // -1: the finest the file has
+  uint64_t max_vertices = uint64_t{1} << 26;  // refuse files that would decode to more
+};
+
+struct DecodedSrm {
+  TriangleMesh mesh;
+  int level = 0;             // the level decoded (lower than asked when the file was cut in the flags)
+  int last_plane = -1;       // the lowest bit plane decoded completely, -1: none
+  uint64_t bytes_used = 0;   // the file's bytes that went into the mesh
+  size_t base_vertices = 0;
+};
+
+// Decodes what `file` holds: a prefix decodes to the best mesh its bytes
+// allow; a cut header or base mesh, or a failed checksum, is an error.
+StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const DecodeOptions& options = {});
+
+}  // namespace srcodec

@@ -1,0 +1,185 @@
+#include "format/srm_file.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <random>
+
+#include "format/checksum.h"
+
+namespace srcodec {
+namespace {
+
+struct Sample {
+  SrmHeader header;
+  std::vector<uint8_t> base;
+  std::vector<std::vector<uint8_t>> flags, segments;
+  std::vector<uint8_t> file;
+};
+
+std::vector<uint8_t> filled(size_t n, uint8_t seed) {
+  std::vector<uint8_t> b(n);
+  for (size_t i = 0; i < n; ++i) b[i] = static_cast<uint8_t>(seed + 7 * i);
+  return b;
+}
+
+// Two levels, three planes: 9 segments, one of them empty.
+Sample make_sample() {
+  Sample s;
+  SrmHeader& h = s.header;
+  h.input_vertices = 1234;
+  h.input_triangles = 2400;
+  h.bbox_min = {-1, -2, -3};
+  h.bbox_max = {1, 2, 3.5};
+  h.levels = 2;
+  h.base_bits = 10;
+  h.grid_step = 6.5 / 1023;
+  h.base_vertices = 12;
+  h.base_triangles = 20;
+  h.level_vertices = {12, 30, 120};
+  h.quant_step = 1e-4;
+  h.scales = {0.25f, 0.25f, 0.25f, 0.5f, 2.f, 2.f, 1.f, 4.f, 4.f};
+  h.top_plane = 2;
+  s.base = filled(40, 1);
+  s.flags = {filled(3, 2), filled(5, 3)};
+  for (int i = 0; i < 9; ++i) s.segments.push_back(filled(i == 4 ? 0 : 10 + i, static_cast<uint8_t>(i)));
+  s.file = write_srm(h, s.base, s.flags, s.segments);
+  return s;
+}
+
+TEST(SrmFile, RoundTripsHeaderAndChunks) {
+  const Sample s = make_sample();
+  StatusOr<SrmFile> f = parse_srm(s.file.data(), s.file.size());
+  ASSERT_TRUE(f.ok()) << f.status().message();
+  const SrmHeader& h = f->header;
+  EXPECT_EQ(h.input_vertices, 1234u);
+  EXPECT_EQ(h.bbox_max.z(), 3.5);
+  EXPECT_EQ(h.levels, 2);
+  EXPECT_EQ(h.level_vertices, s.header.level_vertices);
+  EXPECT_EQ(h.scales, s.header.scales);
+  EXPECT_EQ(h.top_plane, 2);
+  EXPECT_EQ(f->declared_size, s.file.size());
+  EXPECT_EQ(f->base.bytes, s.base);
+  ASSERT_EQ(f->flags.size(), 2u);
+  EXPECT_EQ(f->flags[1].bytes, s.flags[1]);
+  ASSERT_EQ(f->segments.size(), 9u);
+  for (int i = 0; i < 9; ++i) {
+    EXPECT_EQ(f->segments[i].bytes, s.segments[i]) << i;
+    EXPECT_TRUE(verify_chunk(f->segments[i], true, "segment").ok());
+  }
+  EXPECT_EQ(h.segment_index(0, 2), 8u);
+  EXPECT_TRUE(verify_chunk(f->base, false, "base").ok());
+}
+
+TEST(SrmFile, EveryPrefixPastTheHeaderParsesAndShorterOnesSayWhy) {
+  const Sample s = make_sample();
+  const size_t header = parse_srm(s.file.data(), s.file.size())->header_size;
+  for (size_t n = 0; n <= s.file.size(); ++n) {
+    StatusOr<SrmFile> f = parse_srm(s.file.data(), n);
+    if (n < header) {
+      ASSERT_FALSE(f.ok()) << n;
+      EXPECT_NE(f.status().message().find("byte"), std::string::npos) << f.status().message();
+      continue;
+    }
+    ASSERT_TRUE(f.ok()) << n << ": " << f.status().message();
+    size_t present = f->base.bytes.size();
+    for (const auto& c : f->flags) present += c.bytes.size();
+    for (const auto& c : f->segments) {
+      present += c.bytes.size();
+      EXPECT_LE(c.bytes.size(), c.declared);
+    }
+    EXPECT_EQ(present + header, n);
+  }
+}
+
+TEST(SrmFile, MaxBytesActsAsACut) {
+  const Sample s = make_sample();
+  SrmReadOptions o;
+  o.max_bytes = s.file.size() - 5;
+  StatusOr<SrmFile> f = parse_srm(s.file.data(), s.file.size(), o);
+  ASSERT_TRUE(f.ok());
+  EXPECT_EQ(f->file_size, s.file.size() - 5);
+  EXPECT_FALSE(f->segments.back().complete());
+  EXPECT_EQ(f->segments.back().bytes.size(), s.segments.back().size() - 5);
+}
+
+TEST(SrmFile, LowLevelsLoadOnlyTheirChunks) {
+  const Sample s = make_sample();
+  SrmReadOptions o;
+  o.max_level = 1;
+  StatusOr<SrmFile> f = parse_srm(s.file.data(), s.file.size(), o);
+  ASSERT_TRUE(f.ok());
+  EXPECT_TRUE(f->flags[0].loaded);
+  EXPECT_FALSE(f->flags[1].loaded);
+  for (size_t i = 0; i < f->segments.size(); ++i) EXPECT_EQ(f->segments[i].loaded, i % 3 <= 1) << i;
+}
+
+TEST(SrmFile, ReadsFromDiskLikeFromMemory) {
+  const Sample s = make_sample();
+  const std::string path = ::testing::TempDir() + "/sample.srm";
+  std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(s.file.data()),
+                                              static_cast<std::streamsize>(s.file.size()));
+  SrmReadOptions o;
+  o.max_level = 1;
+  o.max_bytes = s.file.size() - 3;
+  StatusOr<SrmFile> disk = read_srm(path, o);
+  StatusOr<SrmFile> memory = parse_srm(s.file.data(), s.file.size(), o);
+  ASSERT_TRUE(disk.ok()) << disk.status().message();
+  ASSERT_TRUE(memory.ok());
+  EXPECT_EQ(disk->base.bytes, memory->base.bytes);
+  for (size_t i = 0; i < memory->segments.size(); ++i) {
+    EXPECT_EQ(disk->segments[i].loaded, memory->segments[i].loaded);
+    EXPECT_EQ(disk->segments[i].bytes, memory->segments[i].bytes) << i;
+  }
+  EXPECT_FALSE(read_srm(path + ".missing").ok());
+}
+
+TEST(SrmFile, CorruptionIsCaught) {
+  const Sample s = make_sample();
+  const size_t header = parse_srm(s.file.data(), s.file.size())->header_size;
+  std::vector<uint8_t> bad = s.file;
+  bad[header / 2] ^= 0x10;
+  StatusOr<SrmFile> f = parse_srm(bad.data(), bad.size());
+  ASSERT_FALSE(f.ok());
+  EXPECT_NE(f.status().message().find("checksum"), std::string::npos) << f.status().message();
+
+  bad = s.file;
+  bad[header + 3] ^= 0x01;  // inside the base chunk
+  f = parse_srm(bad.data(), bad.size());
+  ASSERT_TRUE(f.ok());
+  Status v = verify_chunk(f->base, false, "the base mesh");
+  ASSERT_FALSE(v.ok());
+  EXPECT_NE(v.message().find("the base mesh (bytes"), std::string::npos) << v.message();
+
+  bad = s.file;
+  bad[0] = 'X';
+  EXPECT_NE(parse_srm(bad.data(), bad.size()).status().message().find("not an .srm"), std::string::npos);
+  bad = s.file;
+  bad[4] = 9;
+  EXPECT_EQ(parse_srm(bad.data(), bad.size()).status().code(), StatusCode::kUnsupported);
+}
+
+TEST(SrmFile, GarbageNeverCrashes) {
+  std::mt19937 rng(7);
+  const Sample s = make_sample();
+  for (int trial = 0; trial < 2000; ++trial) {
+    std::vector<uint8_t> b = s.file;
+    if (trial % 2) {
+      b.resize(rng() % 200);
+      for (auto& x : b) x = static_cast<uint8_t>(rng());
+      if (b.size() >= 5) b[0] = 0x89, b[1] = 'S', b[2] = 'R', b[3] = 'M', b[4] = 1;
+    } else {
+      for (int k = 0; k < 3; ++k) b[rng() % b.size()] = static_cast<uint8_t>(rng());
+    }
+    (void)parse_srm(b.data(), b.size());
+  }
+  SUCCEED();
+}
+
+TEST(Checksum, MatchesTheStandardCheckValue) {
+  const uint8_t digits[] = {'1', '2', '3', '4', '5', '6', '7', '8', '9'};
+  EXPECT_EQ(crc32(digits, 9), 0xCBF43926u);
+}
+
+}  // namespace
+}  // namespace srcodec

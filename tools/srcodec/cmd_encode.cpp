@@ -1,0 +1,178 @@
+// `srcodec encode MESH -o OUT.srm`: remesh, transform, code, and keep as much
+// of the embedded stream as the rate option asks (--bytes, --bpv, --psnr).
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "codec/srm_codec.h"
+#include "format/file_io.h"
+#include "format/mesh_io.h"
+#include "tools/measure/surface_distance.h"
+#include "tools/srcodec/commands.h"
+#include "tools/srcodec/json_writer.h"
+#include "tools/srcodec/remesh_flags.h"
+
+namespace srcodec {
+namespace {
+
+struct EncodeCliOptions {
+  std::string input, output;
+  RemeshFlags remesh;
+  double bpv = -1.0, psnr = -1.0;
+  uint64_t bytes = 0;
+  double tangential_factor = 4.0;
+  int base_bits = 10;
+  size_t samples = 200000;
+  bool json = false, quiet = false;
+};
+
+// The PSNR against the input of the mesh the first `n` bytes decode to.
+class PrefixMeter {
+ public:
+  PrefixMeter(const TriangleMesh& input, const std::vector<uint8_t>& file) : input_(input), file_(file) {}
+  StatusOr<double> psnr(uint64_t n, size_t samples) const {
+    SrmReadOptions read;
+    read.max_bytes = n;
+    SRCODEC_ASSIGN_OR_RETURN(SrmFile f, parse_srm(file_.data(), file_.size(), read));
+    SRCODEC_ASSIGN_OR_RETURN(DecodedSrm d, decode_srm(f));
+    SurfaceDistanceOptions o;
+    o.samples_per_surface = samples;
+    SRCODEC_ASSIGN_OR_RETURN(SurfaceDistance s, surface_distance(input_, d.mesh, o));
+    return s.psnr;
+  }
+
+ private:
+  const TriangleMesh& input_;
+  const std::vector<uint8_t>& file_;
+};
+
+// The smallest prefix in [lo, hi] whose PSNR reaches `target` (bisection:
+// the embedded stream's distortion does not grow with its length), measured
+// with fewer samples than the final figure.
+StatusOr<uint64_t> bytes_for_psnr(const PrefixMeter& meter, uint64_t lo, uint64_t hi, double target) {
+  constexpr size_t kSearchSamples = 60000;
+  SRCODEC_ASSIGN_OR_RETURN(double at_lo, meter.psnr(lo, kSearchSamples));
+  if (at_lo >= target) return lo;
+  while (hi - lo > std::max<uint64_t>(16, hi / 1000)) {
+    const uint64_t mid = lo + (hi - lo) / 2;
+    SRCODEC_ASSIGN_OR_RETURN(double p, meter.psnr(mid, kSearchSamples));
+    (p >= target ? hi : lo) = mid;
+  }
+  return hi;
+}
+
+Status run_encode(const EncodeCliOptions& o) {
+  SRCODEC_ASSIGN_OR_RETURN(RemeshOptions remesh_options, to_remesh_options(o.remesh));
+  SRCODEC_RETURN_IF_ERROR(check_output_path(o.output));
+  const auto say = [&](const std::string& line) {
+    if (!o.quiet) std::cerr << "encode: " << line << std::endl;
+  };
+  if (!o.quiet) remesh_options.progress = [](const std::string& line) { std::cerr << "remesh: " << line << std::endl; };
+  SRCODEC_ASSIGN_OR_RETURN(TriangleMesh input, read_triangle_mesh(o.input));
+  const auto start = std::chrono::steady_clock::now();
+  SRCODEC_ASSIGN_OR_RETURN(SemiRegularMesh srm, remesh(input, remesh_options));
+  const double remesh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EncodeOptions encode_options;
+  encode_options.tangential_factor = o.tangential_factor;
+  encode_options.base_bits = o.base_bits;
+  const auto coding_start = std::chrono::steady_clock::now();
+  SRCODEC_ASSIGN_OR_RETURN(EncodedSrm encoded, encode_srm(srm, input, encode_options));
+  const double coding_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - coding_start).count();
+  const uint64_t full = encoded.bytes.size();
+  // Header, base mesh and flags: the least a file can hold.
+  SRCODEC_ASSIGN_OR_RETURN(SrmFile layout, parse_srm(encoded.bytes.data(), encoded.bytes.size()));
+  const uint64_t minimum = layout.segments.empty() ? full : layout.segments.front().offset;
+  const PrefixMeter meter(input, encoded.bytes);
+
+  uint64_t keep = full;
+  std::string rate;
+  double target = -1.0;
+  if (o.bytes > 0 || o.bpv > 0) {
+    keep = o.bytes > 0 ? o.bytes : static_cast<uint64_t>(std::floor(o.bpv * input.positions.size() / 8.0));
+    rate = o.bytes > 0 ? "--bytes " + std::to_string(o.bytes) : "--bpv " + std::to_string(o.bpv);
+    if (keep < minimum)
+      return invalid_argument(rate + " asks for " + std::to_string(keep) + " bytes, fewer than the " +
+                              std::to_string(minimum) + " that the header, base mesh and refinement flags take "
+                              "(try fewer --base-vertices or --levels)");
+    keep = std::min(keep, full);
+  } else {
+    target = o.psnr;
+    if (target < 0) {
+      SRCODEC_ASSIGN_OR_RETURN(double best, meter.psnr(full, 60000));
+      target = best - 1.0;
+      say("no rate option given: aiming at " + std::to_string(target) +
+          " dB, 1 dB below the full stream (use --bpv, --bytes or --psnr to choose)");
+    }
+    rate = "--psnr " + std::to_string(target);
+    say("searching for the shortest prefix that reaches " + std::to_string(target) + " dB");
+    SRCODEC_ASSIGN_OR_RETURN(double best, meter.psnr(full, 60000));
+    if (best < target)
+      return invalid_argument("--psnr " + std::to_string(target) + " is out of reach: the whole stream gives " +
+                              std::to_string(best) + " dB, limited by the remesh (try more --levels or " +
+                              "--base-vertices)");
+    SRCODEC_ASSIGN_OR_RETURN(keep, bytes_for_psnr(meter, minimum, full, target));
+  }
+  SRCODEC_ASSIGN_OR_RETURN(double psnr, meter.psnr(keep, o.samples));
+  SRCODEC_RETURN_IF_ERROR(write_file_atomically(
+      o.output, std::string(encoded.bytes.begin(), encoded.bytes.begin() + static_cast<std::ptrdiff_t>(keep))));
+  const double bpv = 8.0 * keep / input.positions.size();
+  if (o.json) {
+    JsonWriter j;
+    j.field("input", o.input)
+        .field("output", o.output)
+        .field("input_vertices", input.positions.size())
+        .field("levels", encoded.header.levels)
+        .field("base_vertices", static_cast<size_t>(encoded.header.base_vertices))
+        .field("rate", rate)
+        .field("bytes", static_cast<size_t>(keep))
+        .field("full_stream_bytes", static_cast<size_t>(full))
+        .field("minimum_bytes", static_cast<size_t>(minimum))
+        .field("bpv", bpv)
+        .field("psnr", psnr)
+        .field("remesh_seconds", remesh_seconds)
+        .field("coding_seconds", coding_seconds);
+    std::cout << j.str() << "\n";
+  } else {
+    std::printf("%s: %zu vertices -> %s: %llu bytes (%.3f bpv), %.2f dB PSNR, %d levels over %llu base vertices\n",
+                o.input.c_str(), input.positions.size(), o.output.c_str(), static_cast<unsigned long long>(keep), bpv,
+                psnr, encoded.header.levels, static_cast<unsigned long long>(encoded.header.base_vertices));
+    std::printf("  rate %s; full stream %llu bytes; remesh %.2f s, coding %.2f s\n", rate.c_str(),
+                static_cast<unsigned long long>(full), remesh_seconds, coding_seconds);
+  }
+  return ok_status();
+}
+
+}  // namespace
+
+Command add_encode_command(CLI::App& app) {
+  auto o = std::make_shared<EncodeCliOptions>();
+  CLI::App* cmd = app.add_subcommand("encode", "Remesh and compress a mesh into a progressive .srm file");
+  cmd->add_option("mesh", o->input, "Input mesh (OBJ, PLY, OFF, STL)")->required();
+  cmd->add_option("-o,--output", o->output, "The .srm file to write")->required();
+  add_remesh_flags(cmd, o->remesh);
+  auto* bpv = cmd->add_option("--bpv", o->bpv, "Rate: bits per input vertex")->check(CLI::PositiveNumber);
+  auto* bytes = cmd->add_option("--bytes", o->bytes, "Rate: file size in bytes")->check(CLI::PositiveNumber);
+  auto* psnr = cmd->add_option("--psnr", o->psnr, "Rate: the smallest file reaching this PSNR (dB) against the input")
+                   ->check(CLI::PositiveNumber);
+  bpv->excludes(bytes)->excludes(psnr);
+  bytes->excludes(psnr);
+  cmd->add_option("--tangential-factor", o->tangential_factor,
+                  "Quantizer step of tangential detail components relative to normal ones")
+      ->check(CLI::Range(0.25, 64.0))
+      ->capture_default_str();
+  cmd->add_option("--base-bits", o->base_bits, "Bits per coordinate of the base mesh grid")
+      ->check(CLI::Range(4, 24))
+      ->capture_default_str();
+  cmd->add_option("--samples", o->samples, "Samples per surface for the PSNR figures")
+      ->check(CLI::Range(size_t{1000}, size_t{100000000}))
+      ->capture_default_str();
+  cmd->add_flag("--json", o->json, "Print one JSON object");
+  cmd->add_flag("-q,--quiet", o->quiet, "No progress lines on stderr");
+  return {cmd, [o] { return run_encode(*o); }};
+}
+
+}  // namespace srcodec

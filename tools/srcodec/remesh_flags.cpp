@@ -1,0 +1,51 @@
+#include "tools/srcodec/remesh_flags.h"
+
+#include <algorithm>
+
+namespace srcodec {
+
+void add_remesh_flags(CLI::App* cmd, RemeshFlags& f) {
+  cmd->add_option("--levels", f.levels, "Refinement levels above the base mesh")
+      ->check(CLI::Range(0, 12))
+      ->capture_default_str();
+  cmd->add_option("--base-vertices", f.base_vertices,
+                  "Base mesh vertices (default: from the input size and levels, 100..4000; see README)");
+  auto* threshold = cmd->add_option("--threshold", f.threshold,
+                                    "Adaptive: split a triangle only when each corner's Voronoi cell holds more "
+                                    "than this many (oversampled) input vertices (Eq. 5)");
+  threshold->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--uniform", f.uniform, "Split every triangle (the default without --threshold)")->excludes(threshold);
+  cmd->add_option("--oversample", f.oversample, "Subdivision steps before remeshing: auto, 0, 1, 2 or 3")
+      ->capture_default_str();
+  cmd->add_option("--scheme", f.scheme, "Oversampling scheme: butterfly or loop")->capture_default_str();
+}
+
+StatusOr<RemeshOptions> to_remesh_options(const RemeshFlags& o) {
+  RemeshOptions r;
+  r.levels = o.levels;
+  r.base_vertices = o.base_vertices;
+  if (o.uniform && o.threshold >= 0.0)
+    return invalid_argument("--uniform and --threshold exclude each other (uniform is threshold 0 with every "
+                            "triangle split)");
+  // Without --threshold the remesh is uniform; every cell holds at least its
+  // own site's vertex, so epsilon 0 would split everything anyway.
+  r.uniform = o.uniform || o.threshold < 0.0;
+  r.threshold = std::max(o.threshold, 0.0);
+  if (o.oversample == "auto") {
+    r.oversample = -1;
+  } else if (o.oversample.size() == 1 && o.oversample[0] >= '0' && o.oversample[0] <= '3') {
+    r.oversample = o.oversample[0] - '0';
+  } else {
+    return invalid_argument("--oversample " + o.oversample + ": use auto, 0, 1, 2 or 3");
+  }
+  if (o.scheme == "butterfly") {
+    r.scheme = OversampleScheme::kButterfly;
+  } else if (o.scheme == "loop") {
+    r.scheme = OversampleScheme::kLoop;
+  } else {
+    return invalid_argument("--scheme " + o.scheme + ": use butterfly or loop");
+  }
+  return r;
+}
+
+}  // namespace srcodec

@@ -1,0 +1,25 @@
+// The remesh options shared by `remesh` and `encode`.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+#include "format/status.h"
+#include "remesh/remesher.h"
+
+namespace srcodec {
+
+struct RemeshFlags {
+  std::string oversample = "auto", scheme = "butterfly";
+  int levels = 4;
+  size_t base_vertices = 0;
+  double threshold = -1.0;
+  bool uniform = false;
+};
+
+// Adds --levels, --base-vertices, --threshold, --uniform, --oversample, --scheme.
+void add_remesh_flags(CLI::App* cmd, RemeshFlags& flags);
+StatusOr<RemeshOptions> to_remesh_options(const RemeshFlags& flags);
+
+}  // namespace srcodec
