@@ -53,20 +53,8 @@ ForestLayout build_forest(const TriangleHierarchy& h, int levels) {
   return out;
 }
 
-std::vector<float> level_scales(int levels, double tangential_factor) {
-  std::vector<float> s;
-  for (int f = 0; f <= levels; ++f) {
-    // A level-f coefficient moves an area ~4^-f of the surface: for the L2
-    // error to cost the same per bit everywhere, its step grows as 2^f.
-    // The base residual (f = 0) moves the most surface and gets the finest.
-    const double normal = std::ldexp(1.0, f - levels);
-    s.push_back(static_cast<float>(normal));
-    const double tangential = f == 0 ? normal : normal * tangential_factor;
-    s.push_back(static_cast<float>(tangential));
-    s.push_back(static_cast<float>(tangential));
-  }
-  return s;
-}
+// What the header stores as f32, rounded the same way on both sides.
+double as_float(double v) { return static_cast<double>(static_cast<float>(v)); }
 
 QuantizationGrid grid_of(const SrmHeader& h) {
   QuantizationGrid g;
@@ -98,13 +86,15 @@ StatusOr<EncodedSrm> encode_srm(const SemiRegularMesh& mesh, const TriangleMesh&
     h.bbox_min = h.bbox_min.cwiseMin(p);
     h.bbox_max = h.bbox_max.cwiseMax(p);
   }
+  h.bbox_min = h.bbox_min.unaryExpr(&as_float);
+  h.bbox_max = h.bbox_max.unaryExpr(&as_float);
   const double extent = (h.bbox_max - h.bbox_min).maxCoeff();
   const double diagonal = (h.bbox_max - h.bbox_min).norm();
   h.levels = levels;
   h.base_bits = options.base_bits;
-  h.grid_step = extent > 0 ? extent / ((1 << options.base_bits) - 1) : 1.0;
-  h.quant_step = diagonal > 0 ? diagonal * options.step_fraction : options.step_fraction;
-  h.scales = level_scales(levels, options.tangential_factor);
+  h.grid_step = as_float(extent > 0 ? extent / ((1 << options.base_bits) - 1) : 1.0);
+  h.quant_step = as_float(diagonal > 0 ? diagonal * options.step_fraction : options.step_fraction);
+  h.tangential_factor = as_float(options.tangential_factor);
 
   const int32_t nbase = mesh.hierarchy.base_vertex_count();
   // The base mesh carries the level-0 approximation (base vertices after the
@@ -137,7 +127,7 @@ StatusOr<EncodedSrm> encode_srm(const SemiRegularMesh& mesh, const TriangleMesh&
     const int c = static_cast<int>(node % kSrmComponents);
     const int f = hier.vertex_level(v);
     const double value = f == 0 ? component(coeffs.base[v] - base->positions[v], c) : component(coeffs.detail[v], c);
-    const double steps = std::abs(value) / (h.quant_step * h.scales[f * kSrmComponents + c]);
+    const double steps = std::abs(value) / (h.quant_step * h.scale(f, c));
     const int32_t m = static_cast<int32_t>(std::min<double>(std::floor(steps), kMaxQuantized));
     q[node] = value < 0 ? -m : m;
   }
@@ -218,22 +208,26 @@ StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const DecodeOptions& option
   for (int j = 0; j < level; ++j) out.bytes_used = file.flags[j].offset + file.flags[j].declared;
   const ForestLayout layout = build_forest(hier, level);
   std::vector<BitplaneSegmentView> views;
-  for (int p = h.top_plane; p >= 0; --p) {
-    bool cut = false;
+  bool cut = false;
+  for (int p = h.top_plane; p >= 0 && !cut; --p) {
     for (int f = 0; f <= level && !cut; ++f) {
-      const SrmChunk& c = file.segments[h.segment_index(p, f)];
+      const size_t index = h.segment_index(p, f);
+      if (index >= file.segments.size()) {  // the table ends: the encoder cut the stream here
+        cut = true;
+        break;
+      }
+      const SrmChunk& c = file.segments[index];
       SRCODEC_RETURN_IF_ERROR(verify_chunk(c, true, "segment (plane " + std::to_string(p) + ", level " +
                                                         std::to_string(f) + ")"));
       views.push_back({p, f + 1, c.bytes.data(), c.bytes.size()});
       if (!c.complete()) cut = true;
       if (!c.bytes.empty()) out.bytes_used = std::max<uint64_t>(out.bytes_used, c.offset + c.bytes.size());
     }
-    if (cut) break;
-    out.last_plane = p;
   }
   BitplaneDecodeStats stats;
   StatusOr<std::vector<double>> values = decode_bitplanes(layout.forest, h.top_plane, views, level + 1, &stats);
   if (!values.ok()) return values.status().with_context("coefficients");
+  out.last_plane = stats.last_complete_plane > h.top_plane ? -1 : stats.last_complete_plane;
 
   std::vector<Eigen::Vector3d> base_positions = base->positions;
   std::vector<Eigen::Vector3d> detail(hier.vertex_count(), Eigen::Vector3d::Zero());
@@ -241,7 +235,7 @@ StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const DecodeOptions& option
     const int32_t v = layout.vertex[node / kSrmComponents];
     const int c = static_cast<int>(node % kSrmComponents);
     const int f = hier.vertex_level(v);
-    const double value = values.value()[node] * h.quant_step * h.scales[f * kSrmComponents + c];
+    const double value = values.value()[node] * h.quant_step * h.scale(f, c);
     if (f == 0)
       base_positions[v][c] += value;
     else

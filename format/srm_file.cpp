@@ -18,16 +18,16 @@ constexpr uint64_t kMaxChunkLength = uint64_t{1} << 40;
 void write_body(const SrmHeader& h, ByteWriter& w) {
   w.varint(h.input_vertices);
   w.varint(h.input_triangles);
-  for (int i = 0; i < 3; ++i) w.f64(h.bbox_min[i]);
-  for (int i = 0; i < 3; ++i) w.f64(h.bbox_max[i]);
+  for (int i = 0; i < 3; ++i) w.f32(static_cast<float>(h.bbox_min[i]));
+  for (int i = 0; i < 3; ++i) w.f32(static_cast<float>(h.bbox_max[i]));
   w.u8(static_cast<uint8_t>(h.levels));
   w.u8(static_cast<uint8_t>(h.base_bits));
-  w.f64(h.grid_step);
+  w.f32(static_cast<float>(h.grid_step));
   w.varint(h.base_vertices);
   w.varint(h.base_triangles);
   for (uint64_t n : h.level_vertices) w.varint(n);
-  w.f64(h.quant_step);
-  for (float s : h.scales) w.f32(s);
+  w.f32(static_cast<float>(h.quant_step));
+  w.f32(static_cast<float>(h.tangential_factor));
   w.u8(static_cast<uint8_t>(h.top_plane + 1));
   w.varint(h.base.length);
   w.u32(h.base.crc);
@@ -35,10 +35,18 @@ void write_body(const SrmHeader& h, ByteWriter& w) {
     w.varint(e.length);
     w.u32(e.crc);
   }
+  w.varint(h.segments.size());
   for (const SrmChunkEntry& e : h.segments) {
     w.varint(e.length);
     if (e.length > 0) w.u16(static_cast<uint16_t>(e.crc));
   }
+}
+
+bool read_f32(ByteReader& r, double& v) {
+  float f = 0;
+  if (!r.f32(f)) return false;
+  v = f;
+  return true;
 }
 
 bool finite_positive(double v) { return std::isfinite(v) && v > 0.0; }
@@ -48,9 +56,9 @@ bool finite_positive(double v) { return std::isfinite(v) && v > 0.0; }
 Status read_counts_and_geometry(ByteReader& r, SrmHeader& h) {
   uint8_t levels = 0, bits = 0;
   bool ok = r.varint(h.input_vertices) && r.varint(h.input_triangles);
-  for (int i = 0; ok && i < 3; ++i) ok = r.f64(h.bbox_min[i]);
-  for (int i = 0; ok && i < 3; ++i) ok = r.f64(h.bbox_max[i]);
-  ok = ok && r.u8(levels) && r.u8(bits) && r.f64(h.grid_step) && r.varint(h.base_vertices) &&
+  for (int i = 0; ok && i < 3; ++i) ok = read_f32(r, h.bbox_min[i]);
+  for (int i = 0; ok && i < 3; ++i) ok = read_f32(r, h.bbox_max[i]);
+  ok = ok && r.u8(levels) && r.u8(bits) && read_f32(r, h.grid_step) && r.varint(h.base_vertices) &&
        r.varint(h.base_triangles);
   if (!ok) return r.error("header", "the header ends early");
   if (levels > kSrmMaxLevels)
@@ -72,13 +80,11 @@ Status read_counts_and_geometry(ByteReader& r, SrmHeader& h) {
 }
 
 Status read_quantization(ByteReader& r, SrmHeader& h) {
-  if (!r.f64(h.quant_step)) return r.error("header", "the header ends early");
+  if (!read_f32(r, h.quant_step) || !read_f32(r, h.tangential_factor))
+    return r.error("header", "the header ends early");
   if (!finite_positive(h.quant_step)) return r.error("header", "the quantizer step is not a positive number");
-  h.scales.assign(static_cast<size_t>(h.levels + 1) * kSrmComponents, 0.0f);
-  for (float& s : h.scales) {
-    if (!r.f32(s)) return r.error("header", "the header ends early");
-    if (!finite_positive(s)) return r.error("header", "a quantizer scale is not a positive number");
-  }
+  if (!finite_positive(h.tangential_factor))
+    return r.error("header", "the tangential step factor is not a positive number");
   uint8_t top = 0;
   if (!r.u8(top)) return r.error("header", "the header ends early");
   if (top > kSrmMaxPlane + 1)
@@ -106,8 +112,13 @@ Status read_table(ByteReader& r, SrmHeader& h) {
   SRCODEC_RETURN_IF_ERROR(read_entry(r, h.base, false, "the base mesh"));
   h.flags.resize(h.levels);
   for (SrmChunkEntry& e : h.flags) SRCODEC_RETURN_IF_ERROR(read_entry(r, e, false, "a flag chunk"));
+  uint64_t count = 0;
+  if (!r.varint(count)) return r.error("chunk table", "the segment count ends early");
+  if (count > h.segment_count())
+    return r.error("chunk table", std::to_string(count) + " segments listed; " + std::to_string(h.top_plane + 1) +
+                                      " planes of " + std::to_string(h.levels + 1) + " levels have " +
+                                      std::to_string(h.segment_count()));
   // Each entry takes at least one byte, so the count is bounded by what is left.
-  const size_t count = static_cast<size_t>(h.top_plane + 1) * (h.levels + 1);
   if (count > r.remaining()) return r.error("chunk table", "it lists more segments than it has bytes for");
   h.segments.resize(count);
   for (SrmChunkEntry& e : h.segments) SRCODEC_RETURN_IF_ERROR(read_entry(r, e, true, "a segment"));
@@ -251,6 +262,25 @@ StatusOr<SrmFile> read_srm(const std::string& path, const SrmReadOptions& option
   });
   if (!status.ok()) return status.with_context(path);
   return f;
+}
+
+StatusOr<std::vector<uint8_t>> truncate_srm(const std::vector<uint8_t>& file, uint64_t segment_bytes) {
+  SRCODEC_ASSIGN_OR_RETURN(SrmFile f, parse_srm(file.data(), file.size()));
+  std::vector<std::vector<uint8_t>> flags, segments;
+  if (!f.base.complete()) return invalid_argument("truncate: the file is already cut inside its base mesh");
+  for (const SrmChunk& c : f.flags) {
+    if (!c.complete()) return invalid_argument("truncate: the file is already cut inside its flags");
+    flags.push_back(c.bytes);
+  }
+  uint64_t left = segment_bytes;
+  for (const SrmChunk& c : f.segments) {
+    if (left == 0) break;
+    const uint64_t take = std::min<uint64_t>(left, c.bytes.size());
+    segments.emplace_back(c.bytes.begin(), c.bytes.begin() + static_cast<std::ptrdiff_t>(take));
+    left -= take;
+    if (take < c.declared) break;  // cut inside (or a chunk the input itself had cut)
+  }
+  return write_srm(f.header, f.base.bytes, flags, segments);
 }
 
 Status verify_chunk(const SrmChunk& chunk, bool short_crc, const std::string& what) {

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -29,24 +30,35 @@ struct SrmChunkEntry {
 struct SrmHeader {
   uint64_t input_vertices = 0;   // of the original mesh: the bpv denominator
   uint64_t input_triangles = 0;
-  Eigen::Vector3d bbox_min = Eigen::Vector3d::Zero(), bbox_max = Eigen::Vector3d::Zero();  // original mesh
+  // The original mesh's bounding box (PSNR reference, base grid origin).
+  // Stored as f32: the encoder rounds it (and both steps) to float first.
+  Eigen::Vector3d bbox_min = Eigen::Vector3d::Zero(), bbox_max = Eigen::Vector3d::Zero();
   int levels = 0;                // finest level L, 0..kSrmMaxLevels
   int base_bits = 12;            // base position grid: bits per coordinate
   double grid_step = 1.0;        // grid spacing; origin bbox_min
   uint64_t base_vertices = 0, base_triangles = 0;
   std::vector<uint64_t> level_vertices;  // L + 1: vertices created at each level (0: base)
   double quant_step = 1.0;       // the coefficient quantizer's unit
-  // (L + 1) x 3: step multiplier of (coefficient level f, component c) at
-  // index 3f + c; f = 0 is the base residual (x, y, z), f = j >= 1 level j's
-  // details (normal, tangent, tangent).
-  std::vector<float> scales;
+  // Tangential detail components' step relative to normal ones.
+  double tangential_factor = 1.0;
   int top_plane = -1;            // -1: every coefficient is zero
   SrmChunkEntry base;
   std::vector<SrmChunkEntry> flags;     // L: flags of level j's triangles decide level j + 1
-  std::vector<SrmChunkEntry> segments;  // (top_plane + 1) x (L + 1), index (top_plane - p)(L + 1) + f
+  // The segments present, in stream order: (top_plane + 1) x (L + 1) in a
+  // whole file, fewer in a file cut by the encoder's rate control.
+  std::vector<SrmChunkEntry> segments;
 
+  size_t segment_count() const { return static_cast<size_t>(top_plane + 1) * (levels + 1); }
   size_t segment_index(int plane, int f) const {
     return static_cast<size_t>(top_plane - plane) * (levels + 1) + f;
+  }
+  // Step multiplier of coefficient level f (0: base residual, j >= 1: level
+  // j's details) and component c (details: 0 normal, 1-2 tangents). A
+  // level-f coefficient moves an area ~4^-f of the surface, so for the L2
+  // error to cost the same per bit everywhere its step grows as 2^f.
+  double scale(int f, int c) const {
+    const double normal = std::ldexp(1.0, f - levels);
+    return (f > 0 && c > 0) ? normal * tangential_factor : normal;
   }
 };
 
@@ -69,13 +81,19 @@ struct SrmFile {
   uint64_t file_size = 0;      // bytes present (a prefix may be shorter)
   SrmChunk base;
   std::vector<SrmChunk> flags;
-  std::vector<SrmChunk> segments;
+  std::vector<SrmChunk> segments;  // as many as the table lists; decoding stops after the last
 };
 
 // The whole file: header, table, then the chunks in table order.
 std::vector<uint8_t> write_srm(SrmHeader header, const std::vector<uint8_t>& base,
                                const std::vector<std::vector<uint8_t>>& flags,
                                const std::vector<std::vector<uint8_t>>& segments);
+
+// The file with only the first `segment_bytes` bytes of its coefficient
+// segments (the last one cut short where the count ends inside it), and a
+// table that lists just those: what rate control writes. Decodes like the
+// whole file's prefix with as many segment bytes.
+StatusOr<std::vector<uint8_t>> truncate_srm(const std::vector<uint8_t>& file, uint64_t segment_bytes);
 
 // Which chunks to load: those levels <= max_level need (-1: all), from the
 // first `max_bytes` bytes only (0: all).

@@ -38,7 +38,7 @@ Sample make_sample() {
   h.base_triangles = 20;
   h.level_vertices = {12, 30, 120};
   h.quant_step = 1e-4;
-  h.scales = {0.25f, 0.25f, 0.25f, 0.5f, 2.f, 2.f, 1.f, 4.f, 4.f};
+  h.tangential_factor = 4.0;
   h.top_plane = 2;
   s.base = filled(40, 1);
   s.flags = {filled(3, 2), filled(5, 3)};
@@ -56,7 +56,10 @@ TEST(SrmFile, RoundTripsHeaderAndChunks) {
   EXPECT_EQ(h.bbox_max.z(), 3.5);
   EXPECT_EQ(h.levels, 2);
   EXPECT_EQ(h.level_vertices, s.header.level_vertices);
-  EXPECT_EQ(h.scales, s.header.scales);
+  EXPECT_EQ(h.tangential_factor, 4.0);
+  EXPECT_EQ(h.scale(2, 0), 1.0);
+  EXPECT_EQ(h.scale(1, 1), 2.0);
+  EXPECT_EQ(h.scale(0, 1), 0.25);
   EXPECT_EQ(h.top_plane, 2);
   EXPECT_EQ(f->declared_size, s.file.size());
   EXPECT_EQ(f->base.bytes, s.base);
@@ -174,6 +177,36 @@ TEST(SrmFile, GarbageNeverCrashes) {
     (void)parse_srm(b.data(), b.size());
   }
   SUCCEED();
+}
+
+TEST(SrmFile, TruncationKeepsWholeSegmentsThenCutsOneAndListsOnlyThose) {
+  const Sample s = make_sample();
+  size_t total = 0;
+  for (const auto& seg : s.segments) total += seg.size();
+  for (uint64_t keep : {uint64_t{0}, uint64_t{10}, uint64_t{15}, uint64_t{47}, uint64_t{total}}) {
+    StatusOr<std::vector<uint8_t>> cut = truncate_srm(s.file, keep);
+    ASSERT_TRUE(cut.ok()) << cut.status().message();
+    StatusOr<SrmFile> f = parse_srm(cut->data(), cut->size());
+    ASSERT_TRUE(f.ok()) << f.status().message();
+    EXPECT_EQ(f->declared_size, cut->size());
+    EXPECT_EQ(f->base.bytes, s.base);
+    uint64_t kept = 0;
+    for (size_t i = 0; i < f->segments.size(); ++i) {
+      const auto& c = f->segments[i];
+      EXPECT_TRUE(c.complete());
+      EXPECT_TRUE(verify_chunk(c, true, "segment").ok());
+      // Each kept segment is the original's start.
+      EXPECT_TRUE(std::equal(c.bytes.begin(), c.bytes.end(), s.segments[i].begin())) << i;
+      kept += c.bytes.size();
+    }
+    EXPECT_EQ(kept, keep);
+    if (keep < total) {
+      EXPECT_LT(cut->size(), s.file.size());
+    }
+  }
+  EXPECT_EQ(truncate_srm(s.file, total).value(), s.file);
+  std::vector<uint8_t> prefix(s.file.begin(), s.file.end() - 4);
+  EXPECT_TRUE(truncate_srm(prefix, 5).ok());
 }
 
 TEST(Checksum, MatchesTheStandardCheckValue) {

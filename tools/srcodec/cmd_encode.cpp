@@ -29,36 +29,60 @@ struct EncodeCliOptions {
   bool json = false, quiet = false;
 };
 
-// The PSNR against the input of the mesh the first `n` bytes decode to.
-class PrefixMeter {
+// Rate control over the embedded stream: the file that keeps the first
+// `segment_bytes` bytes of coefficient segments (truncate_srm), its size, and
+// the PSNR against the input of the mesh it decodes to.
+class StreamCutter {
  public:
-  PrefixMeter(const TriangleMesh& input, const std::vector<uint8_t>& file) : input_(input), file_(file) {}
-  StatusOr<double> psnr(uint64_t n, size_t samples) const {
-    SrmReadOptions read;
-    read.max_bytes = n;
-    SRCODEC_ASSIGN_OR_RETURN(SrmFile f, parse_srm(file_.data(), file_.size(), read));
+  StreamCutter(const TriangleMesh& input, const std::vector<uint8_t>& full) : input_(input), full_(full) {
+    const StatusOr<SrmFile> f = parse_srm(full.data(), full.size());
+    if (f.ok())
+      for (const SrmChunk& c : f->segments) segment_bytes_ += c.declared;
+  }
+  uint64_t segment_bytes() const { return segment_bytes_; }
+  StatusOr<std::vector<uint8_t>> cut(uint64_t segment_bytes) const { return truncate_srm(full_, segment_bytes); }
+  StatusOr<double> psnr(uint64_t segment_bytes, size_t samples) const {
+    SRCODEC_ASSIGN_OR_RETURN(std::vector<uint8_t> file, cut(segment_bytes));
+    SRCODEC_ASSIGN_OR_RETURN(SrmFile f, parse_srm(file.data(), file.size()));
     SRCODEC_ASSIGN_OR_RETURN(DecodedSrm d, decode_srm(f));
     SurfaceDistanceOptions o;
     o.samples_per_surface = samples;
     SRCODEC_ASSIGN_OR_RETURN(SurfaceDistance s, surface_distance(input_, d.mesh, o));
     return s.psnr;
   }
+  // The most segment bytes whose file fits in `bytes` (the table shrinks
+  // with the segments it lists, so this is a search, not a subtraction).
+  StatusOr<uint64_t> segment_bytes_within(uint64_t bytes) const {
+    uint64_t lo = 0, hi = segment_bytes_;
+    while (lo < hi) {
+      const uint64_t mid = lo + (hi - lo + 1) / 2;
+      SRCODEC_ASSIGN_OR_RETURN(std::vector<uint8_t> file, cut(mid));
+      if (file.size() <= bytes) {
+        lo = mid;
+      } else {
+        hi = mid - 1;
+      }
+    }
+    return lo;
+  }
 
  private:
   const TriangleMesh& input_;
-  const std::vector<uint8_t>& file_;
+  const std::vector<uint8_t>& full_;
+  uint64_t segment_bytes_ = 0;
 };
 
-// The smallest prefix in [lo, hi] whose PSNR reaches `target` (bisection:
-// the embedded stream's distortion does not grow with its length), measured
-// with fewer samples than the final figure.
-StatusOr<uint64_t> bytes_for_psnr(const PrefixMeter& meter, uint64_t lo, uint64_t hi, double target) {
+// The fewest segment bytes whose PSNR reaches `target` (bisection: the
+// embedded stream's distortion does not grow with its length), measured with
+// fewer samples than the final figure.
+StatusOr<uint64_t> segment_bytes_for_psnr(const StreamCutter& cutter, double target) {
   constexpr size_t kSearchSamples = 60000;
-  SRCODEC_ASSIGN_OR_RETURN(double at_lo, meter.psnr(lo, kSearchSamples));
+  uint64_t lo = 0, hi = cutter.segment_bytes();
+  SRCODEC_ASSIGN_OR_RETURN(double at_lo, cutter.psnr(lo, kSearchSamples));
   if (at_lo >= target) return lo;
-  while (hi - lo > std::max<uint64_t>(16, hi / 1000)) {
+  while (hi - lo > std::max<uint64_t>(8, hi / 2000)) {
     const uint64_t mid = lo + (hi - lo) / 2;
-    SRCODEC_ASSIGN_OR_RETURN(double p, meter.psnr(mid, kSearchSamples));
+    SRCODEC_ASSIGN_OR_RETURN(double p, cutter.psnr(mid, kSearchSamples));
     (p >= target ? hi : lo) = mid;
   }
   return hi;
@@ -83,42 +107,43 @@ Status run_encode(const EncodeCliOptions& o) {
   const double coding_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - coding_start).count();
   const uint64_t full = encoded.bytes.size();
+  const StreamCutter cutter(input, encoded.bytes);
   // Header, base mesh and flags: the least a file can hold.
-  SRCODEC_ASSIGN_OR_RETURN(SrmFile layout, parse_srm(encoded.bytes.data(), encoded.bytes.size()));
-  const uint64_t minimum = layout.segments.empty() ? full : layout.segments.front().offset;
-  const PrefixMeter meter(input, encoded.bytes);
+  SRCODEC_ASSIGN_OR_RETURN(std::vector<uint8_t> smallest, cutter.cut(0));
+  const uint64_t minimum = smallest.size();
 
-  uint64_t keep = full;
+  uint64_t segment_bytes = cutter.segment_bytes();
   std::string rate;
   double target = -1.0;
   if (o.bytes > 0 || o.bpv > 0) {
-    keep = o.bytes > 0 ? o.bytes : static_cast<uint64_t>(std::floor(o.bpv * input.positions.size() / 8.0));
+    const uint64_t budget =
+        o.bytes > 0 ? o.bytes : static_cast<uint64_t>(std::floor(o.bpv * input.positions.size() / 8.0));
     rate = o.bytes > 0 ? "--bytes " + std::to_string(o.bytes) : "--bpv " + std::to_string(o.bpv);
-    if (keep < minimum)
-      return invalid_argument(rate + " asks for " + std::to_string(keep) + " bytes, fewer than the " +
+    if (budget < minimum)
+      return invalid_argument(rate + " allows " + std::to_string(budget) + " bytes, fewer than the " +
                               std::to_string(minimum) + " that the header, base mesh and refinement flags take "
                               "(try fewer --base-vertices or --levels)");
-    keep = std::min(keep, full);
+    SRCODEC_ASSIGN_OR_RETURN(segment_bytes, cutter.segment_bytes_within(budget));
   } else {
+    SRCODEC_ASSIGN_OR_RETURN(double best, cutter.psnr(segment_bytes, 60000));
     target = o.psnr;
     if (target < 0) {
-      SRCODEC_ASSIGN_OR_RETURN(double best, meter.psnr(full, 60000));
       target = best - 1.0;
       say("no rate option given: aiming at " + std::to_string(target) +
-          " dB, 1 dB below the full stream (use --bpv, --bytes or --psnr to choose)");
+          " dB, 1 dB below the whole stream (use --bpv, --bytes or --psnr to choose)");
     }
     rate = "--psnr " + std::to_string(target);
-    say("searching for the shortest prefix that reaches " + std::to_string(target) + " dB");
-    SRCODEC_ASSIGN_OR_RETURN(double best, meter.psnr(full, 60000));
     if (best < target)
       return invalid_argument("--psnr " + std::to_string(target) + " is out of reach: the whole stream gives " +
                               std::to_string(best) + " dB, limited by the remesh (try more --levels or " +
                               "--base-vertices)");
-    SRCODEC_ASSIGN_OR_RETURN(keep, bytes_for_psnr(meter, minimum, full, target));
+    say("searching for the shortest stream that reaches " + std::to_string(target) + " dB");
+    SRCODEC_ASSIGN_OR_RETURN(segment_bytes, segment_bytes_for_psnr(cutter, target));
   }
-  SRCODEC_ASSIGN_OR_RETURN(double psnr, meter.psnr(keep, o.samples));
-  SRCODEC_RETURN_IF_ERROR(write_file_atomically(
-      o.output, std::string(encoded.bytes.begin(), encoded.bytes.begin() + static_cast<std::ptrdiff_t>(keep))));
+  SRCODEC_ASSIGN_OR_RETURN(std::vector<uint8_t> file, cutter.cut(segment_bytes));
+  const uint64_t keep = file.size();
+  SRCODEC_ASSIGN_OR_RETURN(double psnr, cutter.psnr(segment_bytes, o.samples));
+  SRCODEC_RETURN_IF_ERROR(write_file_atomically(o.output, std::string(file.begin(), file.end())));
   const double bpv = 8.0 * keep / input.positions.size();
   if (o.json) {
     JsonWriter j;
