@@ -5,7 +5,9 @@
 
 #include <array>
 #include <cstdio>
+#include <cmath>
 #include <cstdlib>
+#include <regex>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -113,6 +115,14 @@ TriangleMesh icosphere(int subdivisions, double radius) {
   }
   for (auto& p : m.positions) p = p.normalized() * radius;
   return m;
+}
+
+std::string shell_quote(const std::string& s) { return "'" + s + "'"; }
+
+double json_number(const std::string& json, const std::string& key) {
+  std::smatch m;
+  if (!std::regex_search(json, m, std::regex("\"" + key + "\": (-?[0-9.eE+-]+)"))) return std::nan("");
+  return std::stod(m[1]);
 }
 
 }  // namespace srcodec::test

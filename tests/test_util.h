@@ -33,6 +33,9 @@ struct CommandResult {
 };
 // Runs the srcodec binary with `args` (shell-quoted by the caller).
 CommandResult run_srcodec(const std::string& args);
+std::string shell_quote(const std::string& s);  // 's' for paths without quotes
+// A number field of a flat JSON line, NaN if absent.
+double json_number(const std::string& json, const std::string& key);
 
 // Small meshes with known answers.
 TriangleMesh tetrahedron();

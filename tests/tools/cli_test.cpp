@@ -1,7 +1,6 @@
 // The srcodec binary as a user meets it: exit codes, one-line errors, JSON.
 #include <gtest/gtest.h>
 
-#include <regex>
 
 #include "format/file_io.h"
 #include "tests/test_util.h"
@@ -11,14 +10,8 @@ namespace {
 
 using test::run_srcodec;
 
-std::string q(const std::string& s) { return "'" + s + "'"; }
-
-// A number field of a flat JSON line, NaN if absent.
-double json_number(const std::string& json, const std::string& key) {
-  std::smatch m;
-  if (!std::regex_search(json, m, std::regex("\"" + key + "\": (-?[0-9.eE+-]+)"))) return std::nan("");
-  return std::stod(m[1]);
-}
+using test::json_number;
+const auto q = test::shell_quote;
 
 TEST(Cli, InfoJsonOnSample) {
   auto r = run_srcodec("info --json " + q(test::source_path("data/spot.obj")));

@@ -1,0 +1,76 @@
+// `srcodec encode`, `decode` and `info` on .srm files, as a user meets them.
+#include <gtest/gtest.h>
+
+#include "format/file_io.h"
+#include "tests/test_util.h"
+
+namespace srcodec {
+namespace {
+
+using test::json_number;
+using test::run_srcodec;
+const auto q = test::shell_quote;
+
+TEST(CodecCli, EncodeAtAByteBudgetThenDecodeEveryLevelAndPrefix) {
+  test::ScratchDir dir;
+  const std::string srm = dir.file("spot.srm");
+  auto e = run_srcodec("encode -q --json --levels 2 --bytes 1800 " + q(test::source_path("data/spot.obj")) + " -o " +
+                       q(srm));
+  ASSERT_EQ(e.exit_code, 0) << e.err;
+  EXPECT_LE(json_number(e.out, "bytes"), 1800);
+  EXPECT_GT(json_number(e.out, "bytes"), 1700);
+  EXPECT_GT(json_number(e.out, "psnr"), 40);
+  ASSERT_TRUE(read_file_bytes(srm).ok());
+  EXPECT_LE(read_file_bytes(srm)->size(), 1800u);
+
+  auto info = run_srcodec("info --json " + q(srm));
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_NE(info.out.find("\"format\": \"srm\""), std::string::npos) << info.out;
+  EXPECT_EQ(json_number(info.out, "input_vertices"), 2930);
+  EXPECT_EQ(json_number(info.out, "base_vertices"), json_number(e.out, "base_vertices"));
+
+  double previous_triangles = 0;
+  for (int level = 0; level <= 2; ++level) {
+    auto d = run_srcodec("decode --json --level " + std::to_string(level) + " " + q(srm) + " -o " +
+                         q(dir.file("l" + std::to_string(level) + ".obj")));
+    ASSERT_EQ(d.exit_code, 0) << d.err;
+    EXPECT_EQ(json_number(d.out, "level"), level);
+    EXPECT_EQ(json_number(d.out, "triangles"), level == 0 ? json_number(d.out, "triangles") : 4 * previous_triangles);
+    previous_triangles = json_number(d.out, "triangles");
+  }
+  // A prefix decodes; one that ends inside the header says so and writes nothing.
+  auto prefix = run_srcodec("decode --json --bytes 1200 " + q(srm) + " -o " + q(dir.file("p.obj")));
+  EXPECT_EQ(prefix.exit_code, 0) << prefix.err;
+  auto header = run_srcodec("decode --bytes 20 " + q(srm) + " -o " + q(dir.file("h.obj")));
+  EXPECT_EQ(header.exit_code, 1);
+  EXPECT_NE(header.err.find("inside its"), std::string::npos) << header.err;
+  EXPECT_FALSE(read_file_bytes(dir.file("h.obj")).ok());
+}
+
+TEST(CodecCli, BadRequestsSayWhatAndKeepWhatWasThere) {
+  test::ScratchDir dir;
+  const std::string in = q(test::source_path("data/spot.obj"));
+  const std::string keep = dir.write("keep.srm", "precious");
+  auto tiny = run_srcodec("encode -q --levels 1 --bytes 10 " + in + " -o " + q(keep));
+  EXPECT_EQ(tiny.exit_code, 1);
+  EXPECT_NE(tiny.err.find("header, base mesh and refinement flags"), std::string::npos) << tiny.err;
+  EXPECT_EQ(read_file_bytes(keep).value(), "precious") << "a failed encode must leave the old file alone";
+  auto folder = run_srcodec("encode -q " + in + " -o " + q(dir.file("no/such/dir/x.srm")));
+  EXPECT_EQ(folder.exit_code, 1);
+  EXPECT_NE(folder.err.find("does not exist"), std::string::npos) << folder.err;
+  auto both = run_srcodec("encode -q --bytes 100 --psnr 50 " + in + " -o " + q(dir.file("x.srm")));
+  EXPECT_NE(both.exit_code, 0);
+  auto not_srm = run_srcodec("decode " + in + " -o " + q(dir.file("y.obj")));
+  EXPECT_EQ(not_srm.exit_code, 1);
+  EXPECT_NE(not_srm.err.find("not an .srm"), std::string::npos) << not_srm.err;
+  auto golden = test::source_path("tests/data/golden_v1.srm");
+  auto level = run_srcodec("decode --level 5 " + q(golden) + " -o " + q(dir.file("z.obj")));
+  EXPECT_EQ(level.exit_code, 1);
+  EXPECT_NE(level.err.find("has levels 0..2"), std::string::npos) << level.err;
+  auto unreachable = run_srcodec("encode -q --levels 1 --psnr 150 " + in + " -o " + q(dir.file("u.srm")));
+  EXPECT_EQ(unreachable.exit_code, 1);
+  EXPECT_NE(unreachable.err.find("out of reach"), std::string::npos) << unreachable.err;
+}
+
+}  // namespace
+}  // namespace srcodec
