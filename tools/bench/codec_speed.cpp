@@ -1,0 +1,112 @@
+// Decoder and encoder speed, srcodec against Draco in the same process
+// (issue: encode/decode). For each mesh: remesh once (not timed here), then
+//  - srcodec encode without the remeshing: encode_srm, median of runs;
+//  - srcodec decode to the finest level: parse + decode_srm of the whole
+//    stream and of a rate-controlled file, median of runs, in output
+//    triangles per second;
+//  - Draco decode of the input mesh (cl 10, qp 11 and 14), median of runs, in
+//    output triangles per second.
+// Usage: codec_speed MESH... [--levels L] [--runs N]
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "codec/srm_codec.h"
+#include "format/mesh_io.h"
+#include "remesh/remesher.h"
+#include "tools/measure/draco_baseline.h"
+
+namespace {
+
+using namespace srcodec;
+
+template <typename F>
+double median_ms(int runs, F&& f) {
+  std::vector<double> ms;
+  for (int r = 0; r < runs; ++r) {
+    const auto start = std::chrono::steady_clock::now();
+    f();
+    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  }
+  std::sort(ms.begin(), ms.end());
+  return ms[ms.size() / 2];
+}
+
+// Median decode time of `bytes` and the triangle count it decodes to.
+std::pair<double, size_t> time_decode(const std::vector<uint8_t>& bytes, int runs) {
+  size_t triangles = 0;
+  const double ms = median_ms(runs, [&] {
+    StatusOr<SrmFile> f = parse_srm(bytes.data(), bytes.size());
+    StatusOr<DecodedSrm> d = decode_srm(f.value());
+    triangles = d->mesh.triangles.size();
+  });
+  return {ms, triangles};
+}
+
+int run(const std::string& path, int levels, int runs) {
+  StatusOr<TriangleMesh> input = read_triangle_mesh(path);
+  if (!input.ok()) {
+    std::fprintf(stderr, "%s\n", input.status().message().c_str());
+    return 1;
+  }
+  RemeshOptions options;
+  options.levels = levels;
+  StatusOr<SemiRegularMesh> srm = remesh(input.value(), options);
+  if (!srm.ok()) {
+    std::fprintf(stderr, "%s\n", srm.status().message().c_str());
+    return 1;
+  }
+  EncodedSrm encoded;
+  const double encode_ms = median_ms(runs, [&] { encoded = encode_srm(srm.value(), input.value()).value(); });
+  // A tenth of the stream's segment bytes: a typical rate-controlled file.
+  const SrmFile whole = parse_srm(encoded.bytes.data(), encoded.bytes.size()).value();
+  uint64_t segment_bytes = 0;
+  for (const SrmChunk& c : whole.segments) segment_bytes += c.declared;
+  const std::vector<uint8_t> tenth = truncate_srm(encoded.bytes, segment_bytes / 10).value();
+  const auto [full_ms, full_tris] = time_decode(encoded.bytes, runs);
+  const auto [tenth_ms, tenth_tris] = time_decode(tenth, runs);
+  std::printf("| %s | srcodec encode (no remesh) | %zu B | %.1f ms | |\n", path.c_str(), encoded.bytes.size(),
+              encode_ms);
+  std::printf("| %s | srcodec decode, whole stream | %zu B | %.1f ms | %.2f M tri/s |\n", path.c_str(),
+              encoded.bytes.size(), full_ms, full_tris / full_ms / 1e3);
+  std::printf("| %s | srcodec decode, 1/10 of the stream | %zu B | %.1f ms | %.2f M tri/s |\n", path.c_str(),
+              tenth.size(), tenth_ms, tenth_tris / tenth_ms / 1e3);
+  for (int qp : {11, 14}) {
+    DracoOptions d;
+    d.quantization_bits = qp;
+    const DracoRoundTrip trip = draco_round_trip(input.value(), d).value();
+    size_t tris = 0;
+    const double ms = median_ms(runs, [&] { tris = draco_decode(trip.encoded).value().triangles.size(); });
+    std::printf("| %s | Draco decode qp %d | %zu B | %.1f ms | %.2f M tri/s |\n", path.c_str(), qp,
+                trip.encoded.size(), ms, tris / ms / 1e3);
+  }
+  std::fflush(stdout);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int levels = 4, runs = 5;
+  std::vector<std::string> meshes;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--levels") && i + 1 < argc) {
+      levels = std::atoi(argv[++i]);
+    } else if (!std::strcmp(argv[i], "--runs") && i + 1 < argc) {
+      runs = std::max(1, std::atoi(argv[++i]));
+    } else {
+      meshes.push_back(argv[i]);
+    }
+  }
+  if (meshes.empty()) {
+    std::fprintf(stderr, "usage: codec_speed MESH... [--levels L] [--runs N]\n");
+    return 2;
+  }
+  std::printf("| mesh | what | bytes | median time | output triangles per second |\n|---|---|---|---|---|\n");
+  for (const auto& m : meshes)
+    if (run(m, levels, runs)) return 1;
+  return 0;
+}
