@@ -43,7 +43,7 @@ struct RemeshReport {
 // The default base size: the larger the base mesh, the less the
 // parameterization is stretched (the main limit on quality), so as many base
 // vertices as the oversampling budget allows with about 8 input vertices per
-// finest-level vertex, at most one per 64 input vertices, at least 4 per
+// finest-level vertex, at most one per 24 input vertices, at least 4 per
 // component, and between 100 and 4000 in all.
 size_t default_base_vertices(size_t input_vertices, size_t components, int levels);
 
