@@ -41,7 +41,9 @@ StatusOr<EncodedSrm> encode_srm(const SemiRegularMesh& mesh, const TriangleMesh&
 
 struct DecodeOptions {
   int level = -1;                          // -1: the finest the file has
-  uint64_t max_vertices = uint64_t{1} << 26;  // refuse files that would decode to more
+  // Refuse files that would decode to more vertices (about 500 bytes of
+  // decoder memory each): a tiny file can describe a huge uniform mesh.
+  uint64_t max_vertices = uint64_t{1} << 22;
 };
 
 struct DecodedSrm {

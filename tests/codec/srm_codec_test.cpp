@@ -176,3 +176,49 @@ TEST(SrmCodec, RateControlledFileDecodesLikeThePrefixWithAsManySegmentBytes) {
 
 }  // namespace
 }  // namespace srcodec
+
+namespace srcodec {
+namespace {
+
+// Checksums catch accidents, not malice: chunks of random bytes with valid
+// checksums must still give an error or a mesh, never a crash, a hang or an
+// allocation past the vertex limit.
+TEST(SrmCodec, HostileChunksWithValidChecksumsAreSafe) {
+  const Case c = make_case(3, true, 21);
+  const EncodedSrm e = encode_srm(c.srm, c.input).value();
+  const SrmFile whole = parse_srm(e.bytes.data(), e.bytes.size()).value();
+  std::mt19937 rng(99);
+  auto noise = [&](size_t n) {
+    std::vector<uint8_t> b(n);
+    for (auto& x : b) x = static_cast<uint8_t>(rng());
+    return b;
+  };
+  int decoded = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    std::vector<uint8_t> base = whole.base.bytes;
+    std::vector<std::vector<uint8_t>> flags, segments;
+    for (const auto& f : whole.flags) flags.push_back(f.bytes);
+    for (const auto& s : whole.segments) segments.push_back(s.bytes);
+    const int target = trial % 3;
+    if (target == 0) base = noise(base.size());
+    if (target == 1) flags[rng() % flags.size()] = noise(1 + rng() % 8);
+    if (target == 2)
+      for (auto& s : segments) s = noise(s.size());
+    const std::vector<uint8_t> file = write_srm(whole.header, base, flags, segments);
+    StatusOr<SrmFile> parsed = parse_srm(file.data(), file.size());
+    ASSERT_TRUE(parsed.ok()) << parsed.status().message();
+    DecodeOptions options;
+    options.max_vertices = 20000;
+    StatusOr<DecodedSrm> d = decode_srm(parsed.value(), options);
+    if (d.ok()) {
+      ++decoded;
+      EXPECT_LE(d->mesh.positions.size(), 20000u);
+    } else {
+      EXPECT_FALSE(d.status().message().empty());
+    }
+  }
+  EXPECT_GT(decoded, 0);  // random coefficient bytes are still a valid (wrong) stream
+}
+
+}  // namespace
+}  // namespace srcodec

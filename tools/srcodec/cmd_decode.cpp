@@ -18,7 +18,7 @@ struct DecodeCliOptions {
   std::string input, output;
   int level = -1;
   uint64_t bytes = 0;
-  uint64_t max_vertices = uint64_t{1} << 26;
+  uint64_t max_vertices = uint64_t{1} << 22;
   bool json = false;
 };
 
