@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <chrono>
+#include <cstdio>
 
 #include "codec/base_mesh_coder.h"
 #include "codec/bitplane.h"
@@ -51,6 +53,14 @@ ForestLayout build_forest(const TriangleHierarchy& h, int levels) {
     }
   }
   return out;
+}
+
+// quant_step x scale(f, c) for every (f, c), at index 3f + c.
+std::vector<double> step_table(const SrmHeader& h) {
+  std::vector<double> steps;
+  for (int f = 0; f <= h.levels; ++f)
+    for (int c = 0; c < kSrmComponents; ++c) steps.push_back(h.quant_step * h.scale(f, c));
+  return steps;
 }
 
 // What the header stores as f32, rounded the same way on both sides.
@@ -121,14 +131,15 @@ StatusOr<EncodedSrm> encode_srm(const SemiRegularMesh& mesh, const TriangleMesh&
   const WaveletCoefficients coeffs = forward_lifting(plan.value(), positions);
 
   const ForestLayout layout = build_forest(hier, levels);
+  const std::vector<double> steps = step_table(h);
   std::vector<int32_t> q(layout.forest.parent.size());
   for (size_t node = 0; node < q.size(); ++node) {
     const int32_t v = layout.vertex[node / kSrmComponents];
     const int c = static_cast<int>(node % kSrmComponents);
     const int f = hier.vertex_level(v);
     const double value = f == 0 ? component(coeffs.base[v] - base->positions[v], c) : component(coeffs.detail[v], c);
-    const double steps = std::abs(value) / (h.quant_step * h.scale(f, c));
-    const int32_t m = static_cast<int32_t>(std::min<double>(std::floor(steps), kMaxQuantized));
+    const double units = std::abs(value) / steps[f * kSrmComponents + c];
+    const int32_t m = static_cast<int32_t>(std::min<double>(std::floor(units), kMaxQuantized));
     q[node] = value < 0 ? -m : m;
   }
   const BitplaneStream stream = encode_bitplanes(layout.forest, q);
@@ -179,7 +190,10 @@ StatusOr<int> decode_hierarchy(const SrmFile& file, int level, TriangleHierarchy
 
 }  // namespace
 
+static double tnow(){return std::chrono::duration<double,std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();}
+#define TMARK(name) do { double t_ = tnow(); std::fprintf(stderr, "%s %.2f  ", name, t_ - t0); t0 = t_; } while (0)
 StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const DecodeOptions& options) {
+  double t0 = tnow();
   const SrmHeader& h = file.header;
   int level = options.level < 0 ? h.levels : std::min(options.level, h.levels);
   uint64_t total = 0;
@@ -197,9 +211,11 @@ StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const DecodeOptions& option
       TriangleHierarchy::create(static_cast<int32_t>(h.base_vertices), base->triangles);
   if (!created.ok()) return created.status().with_context("the base mesh is not valid");
   TriangleHierarchy& hier = created.value();
+  TMARK("base");
   StatusOr<int> reached = decode_hierarchy(file, level, hier, options.max_vertices);
   if (!reached.ok()) return reached.status();
   level = reached.value();
+  TMARK("hier");
 
   DecodedSrm out;
   out.level = level;
@@ -207,6 +223,7 @@ StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const DecodeOptions& option
   out.bytes_used = file.base.offset + file.base.declared;
   for (int j = 0; j < level; ++j) out.bytes_used = file.flags[j].offset + file.flags[j].declared;
   const ForestLayout layout = build_forest(hier, level);
+  TMARK("forest");
   std::vector<BitplaneSegmentView> views;
   bool cut = false;
   for (int p = h.top_plane; p >= 0 && !cut; --p) {
@@ -228,14 +245,15 @@ StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const DecodeOptions& option
   StatusOr<std::vector<double>> values = decode_bitplanes(layout.forest, h.top_plane, views, level + 1, &stats);
   if (!values.ok()) return values.status().with_context("coefficients");
   out.last_plane = stats.last_complete_plane > h.top_plane ? -1 : stats.last_complete_plane;
-
+  TMARK("bitplanes");
+  const std::vector<double> steps = step_table(h);
   std::vector<Eigen::Vector3d> base_positions = base->positions;
   std::vector<Eigen::Vector3d> detail(hier.vertex_count(), Eigen::Vector3d::Zero());
   for (size_t node = 0; node < values->size(); ++node) {
     const int32_t v = layout.vertex[node / kSrmComponents];
     const int c = static_cast<int>(node % kSrmComponents);
     const int f = hier.vertex_level(v);
-    const double value = values.value()[node] * h.quant_step * h.scale(f, c);
+    const double value = values.value()[node] * steps[f * kSrmComponents + c];
     if (f == 0)
       base_positions[v][c] += value;
     else
@@ -243,10 +261,14 @@ StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const DecodeOptions& option
   }
   StatusOr<LiftingPlan> plan = LiftingPlan::build(hier, level);
   if (!plan.ok()) return plan.status().with_context("wavelet plan");
+  TMARK("plan");
   std::vector<Eigen::Vector3d> positions = inverse_lifting(plan.value(), base_positions, detail, level);
+  TMARK("inverse");
 
   SemiRegularMesh decoded{{base->positions, base->triangles}, std::move(hier), std::move(positions), level};
   out.mesh = decoded.level_mesh(level);
+  TMARK("mesh");
+  std::fprintf(stderr, "\n");
   return out;
 }
 

@@ -23,6 +23,7 @@ Command add_remesh_command(CLI::App& app);
 Command add_subdivide_command(CLI::App& app);
 Command add_encode_command(CLI::App& app);
 Command add_decode_command(CLI::App& app);
+Command add_rd_command(CLI::App& app);
 
 // `info` on an .srm file (srm_info.cpp).
 Status print_srm_info(const std::string& path, bool json);

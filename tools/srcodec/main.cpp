@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
       srcodec::add_subdivide_command(app),
       srcodec::add_encode_command(app),
       srcodec::add_decode_command(app),
+      srcodec::add_rd_command(app),
   };
 
   try {
