@@ -2,8 +2,7 @@
 // Strasser, "Real time compression of triangle mesh connectivity", SIGGRAPH
 // 1998, with Touma & Gotsman's "conquer around a focus vertex" order, GI 1998)
 // and parallelogram-predicted grid positions (Touma & Gotsman §4), coded with
-// an adaptive binary arithmetic coder (a carry-less range coder with a
-// one-byte cache, as in Subbotin's / LZMA's binary coders).
+// the project's adaptive binary range coder (codec/range_coder.h).
 //
 // Connectivity. Both sides keep the cut border: the directed edges of decoded
 // triangles whose other side is not known yet ("open" edges), linked into
@@ -44,140 +43,24 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "codec/range_coder.h"
+
 namespace srcodec {
 namespace {
 
 constexpr uint8_t kVersion = 1;
-constexpr uint32_t kProbBits = 12;
-constexpr uint32_t kProbOne = 1u << kProbBits;
-constexpr int kAdaptShift = 4;
-constexpr uint32_t kTopValue = 1u << 24;
 constexpr uint32_t kMaxCount = (1u << 28);  // vertices or triangles, far above any base mesh
 
 // ---------------------------------------------------------------- entropy coding
+// The adaptive binary range coder of codec/range_coder.h.
 
-struct Bit {
-  uint16_t p0 = kProbOne / 2;  // probability of a 0, in 1/4096; stays in [15, 4081]
-  void update(int bit) {
-    p0 = static_cast<uint16_t>(bit ? p0 - (p0 >> kAdaptShift) : p0 + ((kProbOne - p0) >> kAdaptShift));
-  }
-};
+using Bit = BitModel;
 
 int bit_width(uint32_t x) {
   int n = 0;
   for (; x; x >>= 1) ++n;
   return n;
 }
-
-class ArithmeticEncoder {
- public:
-  void encode(Bit& m, int bit) {
-    const uint32_t bound = (range_ >> kProbBits) * m.p0;
-    if (bit) {
-      low_ += bound;
-      range_ -= bound;
-    } else {
-      range_ = bound;
-    }
-    m.update(bit);
-    normalize();
-  }
-  void encode_direct(uint32_t value, int count) {  // `count` equiprobable bits, most significant first
-    for (int i = count - 1; i >= 0; --i) {
-      range_ >>= 1;
-      if ((value >> i) & 1u) low_ += range_;
-      normalize();
-    }
-  }
-  std::vector<uint8_t> finish() {
-    for (int i = 0; i < 5; ++i) shift_low();
-    out_.erase(out_.begin());  // the first byte is always 0 (the code value is below 1)
-    return std::move(out_);
-  }
-
- private:
-  void normalize() {
-    while (range_ < kTopValue) {
-      range_ <<= 8;
-      shift_low();
-    }
-  }
-  void shift_low() {
-    if (static_cast<uint32_t>(low_) < 0xFF000000u || (low_ >> 32) != 0) {
-      const uint8_t carry = static_cast<uint8_t>(low_ >> 32);
-      uint8_t byte = cache_;
-      do {
-        out_.push_back(static_cast<uint8_t>(byte + carry));
-        byte = 0xFF;
-      } while (--pending_ != 0);
-      cache_ = static_cast<uint8_t>(low_ >> 24);
-    }
-    ++pending_;
-    low_ = (low_ & 0x00FFFFFFu) << 8;
-  }
-  uint64_t low_ = 0;
-  uint32_t range_ = 0xFFFFFFFFu;
-  uint8_t cache_ = 0;
-  uint64_t pending_ = 1;
-  std::vector<uint8_t> out_;
-};
-
-// Reads zeros past the end and counts them, so garbage never reads out of
-// bounds; the caller turns an overrun into an error.
-class ArithmeticDecoder {
- public:
-  ArithmeticDecoder(const uint8_t* data, size_t size) : data_(data), size_(size) {
-    for (int i = 0; i < 4; ++i) code_ = (code_ << 8) | next_byte();
-  }
-  int decode(Bit& m) {
-    const uint32_t bound = (range_ >> kProbBits) * m.p0;
-    int bit = 0;
-    if (code_ < bound) {
-      range_ = bound;
-    } else {
-      code_ -= bound;
-      range_ -= bound;
-      bit = 1;
-    }
-    m.update(bit);
-    normalize();
-    return bit;
-  }
-  uint32_t decode_direct(int count) {
-    uint32_t value = 0;
-    for (int i = 0; i < count; ++i) {
-      range_ >>= 1;
-      uint32_t bit = 0;
-      if (code_ >= range_) {
-        code_ -= range_;
-        bit = 1;
-      }
-      value = (value << 1) | bit;
-      normalize();
-    }
-    return value;
-  }
-  size_t position() const { return pos_; }  // bytes consumed, counting any read past the end
-  bool overrun() const { return pos_ > size_; }
-
- private:
-  uint8_t next_byte() {
-    const uint8_t b = pos_ < size_ ? data_[pos_] : 0;
-    ++pos_;
-    return b;
-  }
-  void normalize() {
-    while (range_ < kTopValue) {
-      range_ <<= 8;
-      code_ = (code_ << 8) | next_byte();
-    }
-  }
-  const uint8_t* data_;
-  size_t size_;
-  size_t pos_ = 0;
-  uint32_t code_ = 0;
-  uint32_t range_ = 0xFFFFFFFFu;
-};
 
 // Elias-gamma code of value + 1 with adaptive prefix (length) bits.
 struct GammaModel {
@@ -187,9 +70,9 @@ struct GammaModel {
 void encode_gamma(ArithmeticEncoder& enc, GammaModel& m, uint32_t value) {
   const uint32_t x = value + 1;
   const int n = bit_width(x) - 1;
-  for (int i = 0; i < n; ++i) enc.encode(m.prefix[i], 1);
-  enc.encode(m.prefix[n], 0);
-  enc.encode_direct(x - (1u << n), n);
+  for (int i = 0; i < n; ++i) enc.encode(1, m.prefix[i]);
+  enc.encode(0, m.prefix[n]);
+  enc.encode_raw(x - (1u << n), n);
 }
 
 // False when the length exceeds `max_length` bits (corrupt stream).
@@ -198,7 +81,7 @@ bool decode_gamma(ArithmeticDecoder& dec, GammaModel& m, int max_length, uint32_
   while (dec.decode(m.prefix[n])) {
     if (++n > max_length) return false;
   }
-  *value = ((1u << n) | dec.decode_direct(n)) - 1;
+  *value = ((1u << n) | dec.decode_raw(n)) - 1;
   return true;
 }
 
@@ -218,10 +101,10 @@ struct Models {
 
 void encode_symbol(ArithmeticEncoder& enc, std::array<Bit, 5>& m, Symbol s) {
   for (int i = 0; i < 4; ++i) {
-    enc.encode(m[i], s == i);
+    enc.encode(s == i, m[i]);
     if (s == i) return;
   }
-  enc.encode(m[4], s == kOffset);
+  enc.encode(s == kOffset, m[4]);
 }
 
 Symbol decode_symbol(ArithmeticDecoder& dec, std::array<Bit, 5>& m) {
@@ -233,9 +116,9 @@ Symbol decode_symbol(ArithmeticDecoder& dec, std::array<Bit, 5>& m) {
 
 void encode_residual(ArithmeticEncoder& enc, Models& m, int context, const Eigen::Vector3i& r) {
   for (int j = 0; j < 3; ++j) {
-    enc.encode(m.zero[context][j], r[j] == 0);
+    enc.encode(r[j] == 0, m.zero[context][j]);
     if (r[j] == 0) continue;
-    enc.encode(m.sign[context][j], r[j] < 0);
+    enc.encode(r[j] < 0, m.sign[context][j]);
     encode_gamma(enc, m.magnitude[context][j], static_cast<uint32_t>(std::abs(r[j])) - 1);
   }
 }
@@ -571,7 +454,7 @@ class Encoder {
     std::array<int32_t, 3> corners{};
     for (int k = 0; k < 3; ++k) {
       const bool is_new = new_id_[tri[k]] < 0;
-      enc_.encode(models_.start_is_new, is_new);
+      enc_.encode(is_new, models_.start_is_new);
       if (is_new) {
         corners[k] = add_vertex(tri[k], predict_start(q_, corners, k, grid_.bits), 0);
       } else {
@@ -592,7 +475,7 @@ class Encoder {
     return v;
   }
 
-  void encode_global(int32_t v) { enc_.encode_direct(static_cast<uint32_t>(v), bit_width(cb_.vertex_count() - 1)); }
+  void encode_global(int32_t v) { enc_.encode_raw(static_cast<uint32_t>(v), bit_width(cb_.vertex_count() - 1)); }
 
   void encode_existing(int32_t gate, int32_t c, std::array<Bit, 5>& model) {
     const Element& g = cb_.element(gate);
@@ -642,7 +525,7 @@ class Decoder {
  public:
   Decoder(const uint8_t* payload, size_t size, size_t header_size, const QuantizationGrid& grid,
           uint32_t vertex_count, uint32_t triangle_count)
-      : dec_(payload, size), size_(size), header_size_(header_size), grid_(grid),
+      : dec_(payload, size), header_size_(header_size), grid_(grid),
         vertex_count_(vertex_count), triangle_count_(triangle_count) {}
 
   StatusOr<DecodedBaseMesh> run() {
@@ -650,15 +533,13 @@ class Decoder {
       const int32_t gate = cb_.gate();
       const Status s = gate < 0 ? start_component() : decode_gate(gate);
       if (!s.ok()) return error(s.message());
-      if (dec_.position() > size_ + 8) return error("the payload ends early");
+      if (!dec_.ok()) return error("the payload ends early");
     }
     if (cb_.vertex_count() != static_cast<int32_t>(vertex_count_)) {
       return error("decoded " + std::to_string(cb_.vertex_count()) + " vertices, the header says " +
                    std::to_string(vertex_count_));
     }
-    if (dec_.overrun()) return error("the payload ends early");
-    if (dec_.position() != size_) return error("the payload has " + std::to_string(size_ - dec_.position()) +
-                                               " bytes left over");
+    if (!dec_.ok()) return error("the payload ends early");
     DecodedBaseMesh mesh;
     mesh.triangles = cb_.take_triangles();
     mesh.positions.reserve(q_.size());
@@ -669,7 +550,7 @@ class Decoder {
  private:
   Status error(const std::string& what) const {
     return parse_error("base mesh: " + what + " at byte offset " +
-                       std::to_string(header_size_ + std::min(dec_.position(), size_)));
+                       std::to_string(header_size_ + dec_.bytes_consumed()));
   }
 
   Status start_component() {
@@ -734,13 +615,13 @@ class Decoder {
   StatusOr<int32_t> decode_global() {
     const int32_t n = cb_.vertex_count();
     if (n == 0) return parse_error("reference to a vertex before any vertex");
-    const uint32_t v = dec_.decode_direct(bit_width(static_cast<uint32_t>(n - 1)));
+    const uint32_t v = dec_.decode_raw(bit_width(static_cast<uint32_t>(n - 1)));
     if (v >= static_cast<uint32_t>(n)) return parse_error("reference to vertex " + std::to_string(v) + " not yet decoded");
     return static_cast<int32_t>(v);
   }
 
   ArithmeticDecoder dec_;
-  size_t size_, header_size_;
+  size_t header_size_;
   const QuantizationGrid& grid_;
   uint32_t vertex_count_, triangle_count_;
   CutBorder cb_;
