@@ -2,8 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <chrono>
-#include <cstdio>
+#include <future>
 
 #include "codec/base_mesh_coder.h"
 #include "codec/bitplane.h"
@@ -178,8 +177,7 @@ StatusOr<int> decode_hierarchy(const SrmFile& file, int level, TriangleHierarchy
     const std::string what = "the flags of level " + std::to_string(j);
     SRCODEC_RETURN_IF_ERROR(verify_chunk(c, false, what));
     SRCODEC_RETURN_IF_ERROR(decode_refinement_level(h, j, c.bytes.data(), c.bytes.size(), max_vertices));
-    uint64_t created = 0;
-    for (int32_t v = 0; v < h.vertex_count(); ++v) created += h.vertex_level(v) == j + 1;
+    const uint64_t created = h.level_vertex_count(j + 1) - h.level_vertex_count(j);
     if (created != file.header.level_vertices[j + 1])
       return parse_error(what + " make " + std::to_string(created) + " vertices of level " + std::to_string(j + 1) +
                          ", the header says " + std::to_string(file.header.level_vertices[j + 1]) +
@@ -190,10 +188,7 @@ StatusOr<int> decode_hierarchy(const SrmFile& file, int level, TriangleHierarchy
 
 }  // namespace
 
-static double tnow(){return std::chrono::duration<double,std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();}
-#define TMARK(name) do { double t_ = tnow(); std::fprintf(stderr, "%s %.2f  ", name, t_ - t0); t0 = t_; } while (0)
 StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const DecodeOptions& options) {
-  double t0 = tnow();
   const SrmHeader& h = file.header;
   int level = options.level < 0 ? h.levels : std::min(options.level, h.levels);
   uint64_t total = 0;
@@ -211,19 +206,26 @@ StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const DecodeOptions& option
       TriangleHierarchy::create(static_cast<int32_t>(h.base_vertices), base->triangles);
   if (!created.ok()) return created.status().with_context("the base mesh is not valid");
   TriangleHierarchy& hier = created.value();
-  TMARK("base");
+  // A closed regular level of V vertices has 2V triangles, and the nodes of
+  // all levels are 4/3 of the finest ones: ~3 nodes per new vertex. (Only a
+  // hint: `total` is within the vertex limit, a corrupt count costs nothing.)
+  const uint64_t new_vertices = total > h.base_vertices ? total - h.base_vertices : 0;
+  hier.reserve(h.base_triangles + 3 * new_vertices, total);
   StatusOr<int> reached = decode_hierarchy(file, level, hier, options.max_vertices);
   if (!reached.ok()) return reached.status();
   level = reached.value();
-  TMARK("hier");
 
   DecodedSrm out;
   out.level = level;
   out.base_vertices = h.base_vertices;
   out.bytes_used = file.base.offset + file.base.declared;
   for (int j = 0; j < level; ++j) out.bytes_used = file.flags[j].offset + file.flags[j].declared;
+  // The wavelet plan needs only the hierarchy, the coefficients only the
+  // forest: build the plan on a second thread meanwhile. Both are pure
+  // functions of the hierarchy, so the result does not depend on timing.
+  std::future<StatusOr<LiftingPlan>> plan_job =
+      std::async(std::launch::async, [&hier, level] { return LiftingPlan::build(hier, level); });
   const ForestLayout layout = build_forest(hier, level);
-  TMARK("forest");
   std::vector<BitplaneSegmentView> views;
   bool cut = false;
   for (int p = h.top_plane; p >= 0 && !cut; --p) {
@@ -245,7 +247,6 @@ StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const DecodeOptions& option
   StatusOr<std::vector<double>> values = decode_bitplanes(layout.forest, h.top_plane, views, level + 1, &stats);
   if (!values.ok()) return values.status().with_context("coefficients");
   out.last_plane = stats.last_complete_plane > h.top_plane ? -1 : stats.last_complete_plane;
-  TMARK("bitplanes");
   const std::vector<double> steps = step_table(h);
   std::vector<Eigen::Vector3d> base_positions = base->positions;
   std::vector<Eigen::Vector3d> detail(hier.vertex_count(), Eigen::Vector3d::Zero());
@@ -259,16 +260,13 @@ StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const DecodeOptions& option
     else
       detail[v][c] = value;
   }
-  StatusOr<LiftingPlan> plan = LiftingPlan::build(hier, level);
+  const std::vector<std::array<int32_t, 3>> triangles = hier.level_triangles(level);
+  // (An early return before this joins the job in the future's destructor,
+  // which runs before `hier` is destroyed.)
+  StatusOr<LiftingPlan> plan = plan_job.get();
   if (!plan.ok()) return plan.status().with_context("wavelet plan");
-  TMARK("plan");
-  std::vector<Eigen::Vector3d> positions = inverse_lifting(plan.value(), base_positions, detail, level);
-  TMARK("inverse");
-
-  SemiRegularMesh decoded{{base->positions, base->triangles}, std::move(hier), std::move(positions), level};
-  out.mesh = decoded.level_mesh(level);
-  TMARK("mesh");
-  std::fprintf(stderr, "\n");
+  const std::vector<Eigen::Vector3d> positions = inverse_lifting(plan.value(), base_positions, detail, level);
+  out.mesh = compact_mesh(positions, triangles);
   return out;
 }
 

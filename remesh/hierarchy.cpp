@@ -132,13 +132,10 @@ StatusOr<TriangleHierarchy> TriangleHierarchy::create(int32_t base_vertex_count,
   }
   h.vertex_level_.assign(base_vertex_count, 0);
   h.parent_edge_.assign(base_vertex_count, {-1, -1});
-  h.vertex_param_.resize(base_vertex_count);
+  h.vertex_origin_.resize(base_vertex_count);
   for (int32_t v = 0; v < base_vertex_count; ++v) {
     const auto& t = base_triangles[first_face[v]];
-    ParamPoint& p = h.vertex_param_[v];
-    p.face = first_face[v];
-    p.bary = Eigen::Vector3d::Zero();
-    p.bary[std::find(t.begin(), t.end(), v) - t.begin()] = 1.0;
+    h.vertex_origin_[v] = 3 * first_face[v] + static_cast<int32_t>(std::find(t.begin(), t.end(), v) - t.begin());
   }
   h.vertices_at_level_ = {static_cast<size_t>(base_vertex_count)};
   return h;
@@ -160,7 +157,25 @@ std::array<int32_t, 2> TriangleHierarchy::parent_edge(int32_t v) const {
 
 ParamPoint TriangleHierarchy::nominal_param(int32_t v) const {
   assert(v >= 0 && v < vertex_count());
-  return vertex_param_[v];
+  const int32_t node = vertex_origin_[v] / 3, e = vertex_origin_[v] % 3;
+  ParamPoint p;
+  p.face = nodes_[node].base_face;
+  if (v < base_vertex_count_) {
+    p.bary = Eigen::Vector3d::Zero();
+    p.bary[e] = 1.0;
+    return p;
+  }
+  const std::array<Eigen::Vector3d, 3> corners = corner_bary(node);
+  p.bary = 0.5 * (corners[e] + corners[next3(e)]);
+  return p;
+}
+
+void TriangleHierarchy::reserve(size_t nodes, size_t vertices) {
+  nodes_.reserve(nodes);
+  adjacent_.reserve(nodes);
+  vertex_level_.reserve(vertices);
+  parent_edge_.reserve(vertices);
+  vertex_origin_.reserve(vertices);
 }
 
 size_t TriangleHierarchy::level_vertex_count(int32_t level) const {
@@ -221,7 +236,8 @@ void TriangleHierarchy::split(int32_t node, std::vector<int32_t>* new_vertices) 
   if (node < 0 || node >= static_cast<int32_t>(nodes_.size()) || nodes_[node].first_child >= 0) return;
   // A stack rather than recursion: balance chains are as long as the level,
   // but closure can ripple across a whole region.
-  std::vector<int32_t> pending{node};
+  std::vector<int32_t>& pending = pending_;
+  pending.assign(1, node);
   while (!pending.empty()) {
     const int32_t t = pending.back();
     if (nodes_[t].first_child >= 0) {
@@ -249,8 +265,6 @@ void TriangleHierarchy::split_balanced(int32_t node, std::vector<int32_t>* new_v
   const int32_t first = static_cast<int32_t>(nodes_.size());
 
   std::array<int32_t, 3> mid{};
-  std::array<Eigen::Vector3d, 3> corners;
-  bool have_corners = false;
   for (int e = 0; e < 3; ++e) {
     const int32_t across = adjacent_[node][e];
     if (across >= 0 && nodes_[across].first_child >= 0) {
@@ -259,17 +273,10 @@ void TriangleHierarchy::split_balanced(int32_t node, std::vector<int32_t>* new_v
       mid[e] = nodes_[nodes_[across].first_child + f].v[next3(f)];
       continue;
     }
-    if (!have_corners) {
-      corners = corner_bary(node);
-      have_corners = true;
-    }
     mid[e] = vertex_count();
     vertex_level_.push_back(level);
     parent_edge_.push_back({n.v[e], n.v[next3(e)]});
-    ParamPoint p;
-    p.face = n.base_face;
-    p.bary = 0.5 * (corners[e] + corners[next3(e)]);
-    vertex_param_.push_back(p);
+    vertex_origin_.push_back(3 * node + e);
     if (static_cast<int32_t>(vertices_at_level_.size()) <= level) vertices_at_level_.resize(level + 1, 0);
     ++vertices_at_level_[level];
     if (new_vertices) new_vertices->push_back(mid[e]);

@@ -46,8 +46,13 @@ class TriangleHierarchy {
   int32_t vertex_level(int32_t v) const;                   // 0 for base vertices
   std::array<int32_t, 2> parent_edge(int32_t v) const;     // {-1, -1} for base vertices
   // The vertex's dyadic point: a base corner, or the midpoint (on the base
-  // domain) of its parent edge.
+  // domain) of its parent edge. Computed on demand in O(level): only the
+  // remesher asks, and the decoder's replay should not pay for it per split.
   ParamPoint nominal_param(int32_t v) const;
+
+  // Capacity for this many nodes and vertices in all, so that a replay of
+  // known size (the decoder knows its vertex counts) does not reallocate.
+  void reserve(size_t nodes, size_t vertices);
 
   // Splits leaf `node` 1-to-4 (red). First splits, recursively, every coarser
   // leaf across its edges so the hierarchy stays balanced; afterwards splits
@@ -88,7 +93,10 @@ class TriangleHierarchy {
   // Per vertex.
   std::vector<int32_t> vertex_level_;
   std::vector<std::array<int32_t, 2>> parent_edge_;
-  std::vector<ParamPoint> vertex_param_;
+  // Where the vertex was made: 3 node + e for the midpoint of edge e of node
+  // (a new vertex), 3 base face + corner for a base vertex.
+  std::vector<int32_t> vertex_origin_;
+  std::vector<int32_t> pending_;  // split()'s work stack, kept to reuse its memory
   std::vector<size_t> vertices_at_level_;  // how many vertices each level created
   int32_t base_vertex_count_ = 0;
   int32_t max_level_ = 0;

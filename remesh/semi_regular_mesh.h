@@ -30,4 +30,9 @@ struct SemiRegularMesh {
   TriangleMesh level_mesh(int32_t level) const;
 };
 
+// The plain mesh of `triangles` (ids into `positions`): the vertices they use,
+// in increasing id order, and the triangles re-indexed to them.
+TriangleMesh compact_mesh(const std::vector<Eigen::Vector3d>& positions,
+                          const std::vector<std::array<int32_t, 3>>& triangles);
+
 }  // namespace srcodec

@@ -127,8 +127,7 @@ void extraordinary(const LevelMesh& mesh, int32_t e, int32_t o, double scale, st
   out->push_back({e, (1.0 - sum) * scale});  // 3/4, as OpenMesh computes it
 }
 
-void interior_taps(const LevelMesh& mesh, int32_t a, int32_t b, std::vector<Tap>* out) {
-  const int32_t x = mesh.third(a, b), y = mesh.third(b, a);
+void interior_taps(const LevelMesh& mesh, int32_t a, int32_t b, int32_t x, int32_t y, std::vector<Tap>* out) {
   const int32_t va = mesh.valence(a), vb = mesh.valence(b);
   const bool ba = mesh.on_boundary(a), bb = mesh.on_boundary(b);
   if ((va == 6 && vb == 6) || (ba && vb == 6) || (bb && va == 6) || (ba && bb)) {
@@ -198,11 +197,12 @@ StatusOr<LevelMesh> LevelMesh::build(const std::vector<std::array<int32_t, 3>>& 
   return m;
 }
 
-void butterfly_taps(const LevelMesh& mesh, int32_t a, int32_t b, std::vector<Tap>* taps) {
+void butterfly_taps(const LevelMesh& mesh, int32_t a, int32_t b, int32_t left, int32_t right,
+                    std::vector<Tap>* taps) {
   const size_t from = taps->size();
-  const bool forward = mesh.third(a, b) >= 0, backward = mesh.third(b, a) >= 0;
+  const bool forward = left >= 0, backward = right >= 0;
   if (forward && backward)
-    interior_taps(mesh, a, b, taps);
+    interior_taps(mesh, a, b, left, right, taps);
   else if (forward)
     four_point(mesh, a, b, taps);
   else

@@ -45,7 +45,10 @@ class LevelMesh {
 
 // Appends to `taps` the stencil predicting the new vertex on edge (a, b) of
 // `mesh` (which must hold the edge): weights summing to 1, one tap per
-// distinct vertex, sorted by vertex id, no zero weights.
-void butterfly_taps(const LevelMesh& mesh, int32_t a, int32_t b, std::vector<LiftingPlan::Tap>* taps);
+// distinct vertex, sorted by vertex id, no zero weights. `left` and `right`
+// are mesh.third(a, b) and mesh.third(b, a), which the caller has already
+// looked up (the plan keeps them for the frames).
+void butterfly_taps(const LevelMesh& mesh, int32_t a, int32_t b, int32_t left, int32_t right,
+                    std::vector<LiftingPlan::Tap>* taps);
 
 }  // namespace srcodec

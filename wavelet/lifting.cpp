@@ -134,16 +134,18 @@ StatusOr<LiftingPlan> LiftingPlan::build(const TriangleHierarchy& hierarchy, int
       const auto edge = hierarchy.parent_edge(o.v);
       o.a = edge[0];
       o.b = edge[1];
-      if (o.a < 0 || o.b < 0 || !mesh.has_edge(o.a, o.b))
+      if (o.a >= 0 && o.b >= 0) {
+        o.left = mesh.third(o.a, o.b);
+        o.right = mesh.third(o.b, o.a);
+      }
+      if (o.left < 0 && o.right < 0)
         return internal_error("lifting: parent edge (" + std::to_string(o.a) + ", " + std::to_string(o.b) +
                               ") of vertex " + std::to_string(o.v) + " is not an edge of the level-" +
                               std::to_string(j - 1) + " mesh");
-      o.left = mesh.third(o.a, o.b);
-      o.right = mesh.third(o.b, o.a);
       o.update_a = kUpdateWeight / mesh.valence(o.a);
       o.update_b = kUpdateWeight / mesh.valence(o.b);
       o.taps_begin = static_cast<uint32_t>(plan.taps_.size());
-      butterfly_taps(mesh, o.a, o.b, &plan.taps_);
+      butterfly_taps(mesh, o.a, o.b, o.left, o.right, &plan.taps_);
       o.taps_end = static_cast<uint32_t>(plan.taps_.size());
       plan.odds_.push_back(o);
     }

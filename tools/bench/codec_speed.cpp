@@ -6,11 +6,17 @@
 //    triangles per second;
 //  - Draco decode of the input mesh (cl 10, qp 11 and 14), median of runs, in
 //    output triangles per second.
-// Usage: codec_speed MESH... [--levels L] [--runs N]
+// Usage: codec_speed MESH... [--levels L] [--runs N] [--cache DIR]
+// --cache DIR keeps each encoded stream in DIR (named after the mesh and L)
+// and reuses it on later runs, skipping the remeshing and the encode timing:
+// for iterating on the decoder.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -41,26 +47,55 @@ std::pair<double, size_t> time_decode(const std::vector<uint8_t>& bytes, int run
   const double ms = median_ms(runs, [&] {
     StatusOr<SrmFile> f = parse_srm(bytes.data(), bytes.size());
     StatusOr<DecodedSrm> d = decode_srm(f.value());
+    if (!d.ok()) {
+      std::fprintf(stderr, "decode failed: %s\n", d.status().message().c_str());
+      std::exit(1);
+    }
     triangles = d->mesh.triangles.size();
   });
   return {ms, triangles};
 }
 
-int run(const std::string& path, int levels, int runs) {
+std::string cache_path(const std::string& dir, const std::string& mesh, int levels) {
+  const size_t slash = mesh.find_last_of('/');
+  return dir + "/" + (slash == std::string::npos ? mesh : mesh.substr(slash + 1)) + ".L" + std::to_string(levels) +
+         ".srm";
+}
+
+// Remeshes and encodes `input` (median encode time in *encode_ms), or reads
+// the stream from the cache (*encode_ms = -1). Empty on failure.
+std::vector<uint8_t> encoded_stream(const TriangleMesh& input, const std::string& cached, int levels, int runs,
+                                    double* encode_ms) {
+  *encode_ms = -1;
+  if (!cached.empty()) {
+    std::ifstream in(cached, std::ios::binary);
+    if (in) return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  }
+  RemeshOptions options;
+  options.levels = levels;
+  StatusOr<SemiRegularMesh> srm = remesh(input, options);
+  if (!srm.ok()) {
+    std::fprintf(stderr, "%s\n", srm.status().message().c_str());
+    return {};
+  }
+  EncodedSrm encoded;
+  *encode_ms = median_ms(runs, [&] { encoded = encode_srm(srm.value(), input).value(); });
+  if (!cached.empty()) std::ofstream(cached, std::ios::binary).write(reinterpret_cast<const char*>(encoded.bytes.data()),
+                                                                     static_cast<std::streamsize>(encoded.bytes.size()));
+  return encoded.bytes;
+}
+
+int run(const std::string& path, int levels, int runs, const std::string& cache_dir) {
   StatusOr<TriangleMesh> input = read_triangle_mesh(path);
   if (!input.ok()) {
     std::fprintf(stderr, "%s\n", input.status().message().c_str());
     return 1;
   }
-  RemeshOptions options;
-  options.levels = levels;
-  StatusOr<SemiRegularMesh> srm = remesh(input.value(), options);
-  if (!srm.ok()) {
-    std::fprintf(stderr, "%s\n", srm.status().message().c_str());
-    return 1;
-  }
   EncodedSrm encoded;
-  const double encode_ms = median_ms(runs, [&] { encoded = encode_srm(srm.value(), input.value()).value(); });
+  double encode_ms = -1;
+  encoded.bytes = encoded_stream(input.value(), cache_dir.empty() ? "" : cache_path(cache_dir, path, levels), levels,
+                                 runs, &encode_ms);
+  if (encoded.bytes.empty()) return 1;
   // A tenth of the stream's segment bytes: a typical rate-controlled file.
   const SrmFile whole = parse_srm(encoded.bytes.data(), encoded.bytes.size()).value();
   uint64_t segment_bytes = 0;
@@ -68,8 +103,9 @@ int run(const std::string& path, int levels, int runs) {
   const std::vector<uint8_t> tenth = truncate_srm(encoded.bytes, segment_bytes / 10).value();
   const auto [full_ms, full_tris] = time_decode(encoded.bytes, runs);
   const auto [tenth_ms, tenth_tris] = time_decode(tenth, runs);
-  std::printf("| %s | srcodec encode (no remesh) | %zu B | %.1f ms | |\n", path.c_str(), encoded.bytes.size(),
-              encode_ms);
+  if (encode_ms >= 0)
+    std::printf("| %s | srcodec encode (no remesh) | %zu B | %.1f ms | |\n", path.c_str(), encoded.bytes.size(),
+                encode_ms);
   std::printf("| %s | srcodec decode, whole stream | %zu B | %.1f ms | %.2f M tri/s |\n", path.c_str(),
               encoded.bytes.size(), full_ms, full_tris / full_ms / 1e3);
   std::printf("| %s | srcodec decode, 1/10 of the stream | %zu B | %.1f ms | %.2f M tri/s |\n", path.c_str(),
@@ -91,22 +127,25 @@ int run(const std::string& path, int levels, int runs) {
 
 int main(int argc, char** argv) {
   int levels = 4, runs = 5;
+  std::string cache_dir;
   std::vector<std::string> meshes;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--levels") && i + 1 < argc) {
       levels = std::atoi(argv[++i]);
     } else if (!std::strcmp(argv[i], "--runs") && i + 1 < argc) {
       runs = std::max(1, std::atoi(argv[++i]));
+    } else if (!std::strcmp(argv[i], "--cache") && i + 1 < argc) {
+      cache_dir = argv[++i];
     } else {
       meshes.push_back(argv[i]);
     }
   }
   if (meshes.empty()) {
-    std::fprintf(stderr, "usage: codec_speed MESH... [--levels L] [--runs N]\n");
+    std::fprintf(stderr, "usage: codec_speed MESH... [--levels L] [--runs N] [--cache DIR]\n");
     return 2;
   }
   std::printf("| mesh | what | bytes | median time | output triangles per second |\n|---|---|---|---|---|\n");
   for (const auto& m : meshes)
-    if (run(m, levels, runs)) return 1;
+    if (run(m, levels, runs, cache_dir)) return 1;
   return 0;
 }
