@@ -177,6 +177,9 @@ Status lay_out(SrmFile& f, const SrmReadOptions& options,
   f.segments.resize(h.segments.size());
   for (size_t s = 0; s < h.segments.size(); ++s) place(f.segments[s], h.segments[s]);
   f.declared_size = offset;
+  if (f.file_size > f.declared_size)
+    return parse_error("the file has " + std::to_string(f.file_size - f.declared_size) + " bytes after its last chunk "
+                       "(which ends at byte " + std::to_string(f.declared_size) + "): damaged or not written by srcodec");
   const int max_level = options.max_level < 0 ? h.levels : std::min(options.max_level, h.levels);
   SRCODEC_RETURN_IF_ERROR(load(f.base));
   for (int j = 0; j < max_level; ++j) SRCODEC_RETURN_IF_ERROR(load(f.flags[j]));
