@@ -16,7 +16,7 @@ import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-SRCODEC = os.path.join(ROOT, "build", "tools", "srcodec")
+SRCODEC = os.environ.get("SRCODEC", os.path.join(ROOT, "build", "tools", "srcodec"))
 CORPUS = os.path.join(ROOT, "..", "shared", "data", "meshes")
 MESHES = ["stanford-bunny.obj", "armadillo.obj", "nefertiti.obj", "igea.ply"]
 THRESHOLDS = [4, 8, 16]
