@@ -1,139 +1,27 @@
 #include "format/mesh_io.h"
 
-#include <OpenMesh/Core/IO/IOManager.hh>
-#include <OpenMesh/Core/IO/MeshIO.hh>
-#include <OpenMesh/Core/IO/importer/BaseImporter.hh>
-#include <OpenMesh/Core/System/omstream.hh>
-
 #include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <iostream>
 #include <type_traits>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <system_error>
 
 #include "format/file_io.h"
+#include "format/obj_reader.h"
 #include "format/off_reader.h"
 #include "format/ply_reader.h"
+#include "format/stl_reader.h"
 #include "format/text_numbers.h"
 
 namespace srcodec {
 namespace {
 
 namespace fs = std::filesystem;
-using OpenMesh::IO::BaseImporter;
-using OpenMesh::VertexHandle;
-using OpenMesh::FaceHandle;
-using OpenMesh::HalfedgeHandle;
-using OpenMesh::EdgeHandle;
-
-// Records what an OpenMesh reader finds, without OpenMesh's own topology
-// checks: its mesh kernel would silently duplicate vertices at non-manifold
-// spots, and we want to see (and report) the file as it is.
-class SoupImporter final : public BaseImporter {
- public:
-  explicit SoupImporter(PolygonMesh* mesh) : mesh_(mesh) {}
-
-  VertexHandle add_vertex(const OpenMesh::Vec3f& p) override { return add_vertex(OpenMesh::Vec3d(p)); }
-  VertexHandle add_vertex(const OpenMesh::Vec3d& p) override {
-    mesh_->positions.emplace_back(p[0], p[1], p[2]);
-    return VertexHandle(static_cast<int>(mesh_->positions.size()) - 1);
-  }
-  VertexHandle add_vertex() override { return add_vertex(OpenMesh::Vec3d(0, 0, 0)); }
-
-  FaceHandle add_face(const std::vector<VertexHandle>& indices) override {
-    std::vector<int32_t> ids(indices.size());
-    for (size_t i = 0; i < indices.size(); ++i) ids[i] = indices[i].idx();
-    mesh_->add_face(ids.data(), static_cast<int32_t>(ids.size()));
-    return FaceHandle(static_cast<int>(mesh_->num_faces()) - 1);
-  }
-  void set_point(VertexHandle v, const OpenMesh::Vec3f& p) override {
-    if (v.idx() >= 0 && static_cast<size_t>(v.idx()) < mesh_->positions.size())
-      mesh_->positions[v.idx()] = Eigen::Vector3d(p[0], p[1], p[2]);
-  }
-  size_t n_vertices() const override { return mesh_->positions.size(); }
-  size_t n_faces() const override { return mesh_->num_faces(); }
-  size_t n_edges() const override { return 0; }
-  bool is_triangle_mesh() const override { return false; }
-
-  // Everything else a reader may hand over (normals, colours, texture
-  // coordinates, half-edge connectivity of .om files) is not geometry we code.
-  HalfedgeHandle add_edge(VertexHandle, VertexHandle) override { return HalfedgeHandle(); }
-  FaceHandle add_face(HalfedgeHandle) override { return FaceHandle(); }
-  void add_face_texcoords(FaceHandle, VertexHandle, const std::vector<OpenMesh::Vec2f>&) override {}
-  void add_face_texcoords(FaceHandle, VertexHandle, const std::vector<OpenMesh::Vec3f>&) override {}
-  void set_face_texindex(FaceHandle, int) override {}
-  void set_halfedge(VertexHandle, HalfedgeHandle) override {}
-  void set_normal(VertexHandle, const OpenMesh::Vec3f&) override {}
-  void set_normal(VertexHandle, const OpenMesh::Vec3d&) override {}
-  void set_color(VertexHandle, const OpenMesh::Vec3uc&) override {}
-  void set_color(VertexHandle, const OpenMesh::Vec4uc&) override {}
-  void set_color(VertexHandle, const OpenMesh::Vec3f&) override {}
-  void set_color(VertexHandle, const OpenMesh::Vec4f&) override {}
-  void set_texcoord(VertexHandle, const OpenMesh::Vec2f&) override {}
-  void set_status(VertexHandle, const OpenMesh::Attributes::StatusInfo&) override {}
-  void set_next(HalfedgeHandle, HalfedgeHandle) override {}
-  void set_face(HalfedgeHandle, FaceHandle) override {}
-  void request_face_texcoords2D() override {}
-  void set_texcoord(HalfedgeHandle, const OpenMesh::Vec2f&) override {}
-  void set_texcoord(VertexHandle, const OpenMesh::Vec3f&) override {}
-  void set_texcoord(HalfedgeHandle, const OpenMesh::Vec3f&) override {}
-  void set_status(HalfedgeHandle, const OpenMesh::Attributes::StatusInfo&) override {}
-  void set_color(EdgeHandle, const OpenMesh::Vec3uc&) override {}
-  void set_color(EdgeHandle, const OpenMesh::Vec4uc&) override {}
-  void set_color(EdgeHandle, const OpenMesh::Vec3f&) override {}
-  void set_color(EdgeHandle, const OpenMesh::Vec4f&) override {}
-  void set_status(EdgeHandle, const OpenMesh::Attributes::StatusInfo&) override {}
-  void set_normal(FaceHandle, const OpenMesh::Vec3f&) override {}
-  void set_normal(FaceHandle, const OpenMesh::Vec3d&) override {}
-  void set_color(FaceHandle, const OpenMesh::Vec3uc&) override {}
-  void set_color(FaceHandle, const OpenMesh::Vec4uc&) override {}
-  void set_color(FaceHandle, const OpenMesh::Vec3f&) override {}
-  void set_color(FaceHandle, const OpenMesh::Vec4f&) override {}
-  void set_status(FaceHandle, const OpenMesh::Attributes::StatusInfo&) override {}
-  void add_texture_information(int, std::string) override {}
-
- private:
-  PolygonMesh* mesh_;
-};
-
-// OpenMesh writes its complaints to omerr/omlog; we collect them so the one
-// error line we print can say what the parser saw, and the terminal stays clean.
-class OpenMeshLogCapture {
- public:
-  OpenMeshLogCapture() {
-    omerr().disconnect(std::cerr);
-    omerr().connect(errors_);
-    omlog().disable();
-    omout().disable();
-  }
-  ~OpenMeshLogCapture() {
-    omerr().flush();
-    omerr().disconnect(errors_);
-    omerr().connect(std::cerr);
-  }
-  OpenMeshLogCapture(const OpenMeshLogCapture&) = delete;
-  OpenMeshLogCapture& operator=(const OpenMeshLogCapture&) = delete;
-
-  // First line of what the parser said, if anything.
-  std::string first_line() const {
-    omerr().flush();
-    std::string text = errors_.str();
-    auto begin = text.find_first_not_of(" \t\r\n");
-    if (begin == std::string::npos) return "";
-    auto end = text.find_first_of("\r\n", begin);
-    return text.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
-  }
-
- private:
-  std::ostringstream errors_;
-};
 
 Status validate(const PolygonMesh& mesh) {
   for (size_t v = 0; v < mesh.positions.size(); ++v) {
@@ -182,31 +70,15 @@ StatusOr<PolygonMesh> read_polygon_mesh(const std::string& path) {
   if (size == 0) return fail(parse_error("file is empty (0 bytes)"));
   auto bytes = read_file_bytes(path);
   if (!bytes.ok()) return bytes.status();  // already names the file
-  Status checked = check_text_numbers(bytes.value(), ext);
-  if (!checked.ok()) return fail(checked);
-
   PolygonMesh mesh;
-  if (ext == ".ply" || ext == ".off") {
-    Status s = ext == ".ply" ? read_ply(bytes.value(), &mesh) : read_off(bytes.value(), &mesh);
-    if (!s.ok()) return fail(s);
-  } else {
-    OpenMeshLogCapture capture;
-    SoupImporter importer(&mesh);
-    OpenMesh::IO::Options options;
-    bool read_ok = false;
-    try {
-      read_ok = OpenMesh::IO::IOManager().read(path, importer, options);
-    } catch (const std::exception& e) {
-      return fail(parse_error(std::string("the parser failed: ") + e.what()));
-    }
-    if (!read_ok) {
-      std::string said = capture.first_line();
-      return fail(parse_error("not a readable " + ext.substr(1) + " file" +
-                              (said.empty() ? std::string() : " (parser: " + said + ")")));
-    }
-  }
+  Status s;
+  if (ext == ".obj") s = read_obj(bytes.value(), &mesh);
+  else if (ext == ".off") s = read_off(bytes.value(), &mesh);
+  else if (ext == ".stl") s = read_stl(bytes.value(), &mesh);
+  else if (s = check_ascii_ply_numbers(bytes.value()); s.ok()) s = read_ply(bytes.value(), &mesh);
+  if (!s.ok()) return fail(s);
   if (mesh.positions.empty()) return fail(parse_error("no vertices found: not a valid " + ext.substr(1) + " file"));
-  Status s = validate(mesh);
+  s = validate(mesh);
   if (!s.ok()) return fail(s);
   return mesh;
 }
@@ -285,6 +157,39 @@ std::string ply_bytes(const TriangleMesh& mesh) {
   return out;
 }
 
+std::string off_text(const TriangleMesh& mesh) {
+  std::string out = "OFF\n# written by srcodec\n" + std::to_string(mesh.positions.size()) + " " +
+                    std::to_string(mesh.triangles.size()) + " 0\n";
+  for (const auto& p : mesh.positions) {
+    append_number(out, p.x());
+    out += ' ';
+    append_number(out, p.y());
+    out += ' ';
+    append_number(out, p.z());
+    out += '\n';
+  }
+  for (const auto& t : mesh.triangles) {
+    out += "3 " + std::to_string(t[0]) + ' ' + std::to_string(t[1]) + ' ' + std::to_string(t[2]) + '\n';
+  }
+  return out;
+}
+
+// Binary STL: float corners, each triangle with its unit normal.
+std::string stl_bytes(const TriangleMesh& mesh) {
+  std::string out = "binary STL written by srcodec";
+  out.resize(80, ' ');
+  append_le(out, static_cast<uint32_t>(mesh.triangles.size()));
+  for (const auto& t : mesh.triangles) {
+    const Eigen::Vector3d& a = mesh.positions[t[0]];
+    const Eigen::Vector3d n = (mesh.positions[t[1]] - a).cross(mesh.positions[t[2]] - a).normalized();
+    for (int k = 0; k < 3; ++k) append_le(out, std::isfinite(n[k]) ? static_cast<float>(n[k]) : 0.0f);
+    for (int c = 0; c < 3; ++c)
+      for (int k = 0; k < 3; ++k) append_le(out, static_cast<float>(mesh.positions[t[c]][k]));
+    append_le(out, uint16_t{0});
+  }
+  return out;
+}
+
 }  // namespace
 
 Status write_mesh(const TriangleMesh& mesh, const std::string& path) {
@@ -292,7 +197,9 @@ Status write_mesh(const TriangleMesh& mesh, const std::string& path) {
   std::string bytes;
   if (ext == ".obj") bytes = obj_text(mesh);
   else if (ext == ".ply") bytes = ply_bytes(mesh);
-  else return unsupported("cannot write '" + ext + "' meshes (supported: .obj .ply)").with_context(path);
+  else if (ext == ".off") bytes = off_text(mesh);
+  else if (ext == ".stl") bytes = stl_bytes(mesh);
+  else return unsupported("cannot write '" + ext + "' meshes (supported: .obj .ply .off .stl)").with_context(path);
   return write_file_atomically(path, bytes);
 }
 

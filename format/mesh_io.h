@@ -1,8 +1,9 @@
-// Mesh files in and out. Reading goes through OpenMesh's parsers (OBJ, STL)
-// and our own PLY and OFF readers (format/ply_reader.h, off_reader.h; OpenMesh's
-// crashed or hung on damaged files of those kinds) into a raw PolygonMesh, checked for what would make
-// later stages misbehave: missing or empty files, unknown formats, indices
-// out of range, non-finite coordinates, no faces.
+// Mesh files in and out. Reading uses our own parsers, one per format
+// (format/obj_reader.h, off_reader.h, ply_reader.h, stl_reader.h): OpenMesh's
+// crashed, hung or aborted on damaged files in our fuzzing (fuzz/). They fill
+// a raw PolygonMesh, checked for what would make later stages misbehave:
+// missing or empty files, unknown formats, indices out of range, non-finite
+// coordinates, no faces.
 #pragma once
 
 #include <string>

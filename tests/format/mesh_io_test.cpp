@@ -26,7 +26,7 @@ TEST(MeshIo, ObjAndPlyRoundTripExactly) {
   const TriangleMesh sphere = test::icosphere(2, 0.37);  // non-float-exact doubles
   ScratchDir dir;
   for (const TriangleMesh* mesh : {&cube, &sphere}) {
-    for (const char* name : {"m.obj", "m.ply"}) {
+    for (const char* name : {"m.obj", "m.ply", "m.off"}) {
       ASSERT_TRUE(write_mesh(*mesh, dir.file(name)).ok());
       auto back = read_triangle_mesh(dir.file(name));
       ASSERT_TRUE(back.ok()) << back.status().message();
@@ -38,6 +38,22 @@ TEST(MeshIo, ObjAndPlyRoundTripExactly) {
         const double tolerance = mesh == &cube ? 0.0 : 1e-7;
         EXPECT_NEAR((back->positions[i] - mesh->positions[i]).norm(), 0.0, tolerance) << name << " vertex " << i;
       }
+    }
+  }
+}
+
+TEST(MeshIo, StlRoundTripsToFloatPrecision) {
+  const TriangleMesh sphere = test::icosphere(2, 0.37);
+  ScratchDir dir;
+  ASSERT_TRUE(write_mesh(sphere, dir.file("m.stl")).ok());
+  auto back = read_triangle_mesh(dir.file("m.stl"));
+  ASSERT_TRUE(back.ok()) << back.status().message();
+  ASSERT_EQ(back->positions.size(), sphere.positions.size());  // corners welded back
+  ASSERT_EQ(back->triangles.size(), sphere.triangles.size());
+  for (size_t t = 0; t < sphere.triangles.size(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d original = sphere.positions[sphere.triangles[t][k]];
+      EXPECT_NEAR((back->positions[back->triangles[t][k]] - original).norm(), 0.0, 1e-7);
     }
   }
 }
@@ -65,6 +81,57 @@ TEST(MeshIo, ReadsOffAndAsciiStl) {
   ASSERT_TRUE(s.ok()) << s.status().message();
   EXPECT_EQ(s->positions.size(), 4u);  // STL repeats corners; they are welded
   EXPECT_EQ(s->triangles.size(), 4u);
+}
+
+TEST(MeshIo, ReadsObjStatements) {
+  ScratchDir dir;
+  // Texture and normal indices, relative indices, a continued line, a
+  // quad, comments, CRLF line ends and statements srcodec ignores.
+  const std::string obj =
+      "# comment\r\nmtllib x.mtl\r\no thing\nv 0 0 0 1.0\nv 1 0 0\nv +1 1 0 0.5 0.5 0.5\nv 0 1e0 0\n"
+      "vt 0 0\nvn 0 0 1\ng group\ns 1\nusemtl m\n"
+      "f 1/1/1 2/1/1 \\\n 3/1/1\nf -4//1 -2//1 -1//1\nl 1 2\nf 1 2 3 4 # a quad\n";
+  auto m = read_polygon_mesh(dir.write("s.obj", obj));
+  ASSERT_TRUE(m.ok()) << m.status().message();
+  ASSERT_EQ(m->positions.size(), 4u);
+  EXPECT_EQ(m->positions[2], Eigen::Vector3d(1, 1, 0));
+  ASSERT_EQ(m->num_faces(), 3u);
+  EXPECT_EQ(std::vector<int32_t>(m->face(0), m->face(0) + 3), (std::vector<int32_t>{0, 1, 2}));
+  EXPECT_EQ(std::vector<int32_t>(m->face(1), m->face(1) + 3), (std::vector<int32_t>{0, 2, 3}));
+  EXPECT_EQ(m->face_size(2), 4);
+}
+
+TEST(MeshIo, ReadsBinaryStl) {
+  const TriangleMesh tet = test::tetrahedron();
+  auto binary = [&](const std::string& header80) {
+    std::string out = header80;
+    out.resize(80, ' ');
+    const auto count = static_cast<uint32_t>(tet.triangles.size());
+    out.append(reinterpret_cast<const char*>(&count), 4);
+    for (const auto& t : tet.triangles) {
+      const float normal[3] = {0, 0, 0};
+      out.append(reinterpret_cast<const char*>(normal), sizeof normal);
+      for (int k = 0; k < 3; ++k) {
+        const Eigen::Vector3f p = tet.positions[t[k]].cast<float>();
+        out.append(reinterpret_cast<const char*>(p.data()), 12);
+      }
+      out.append(2, '\0');
+    }
+    return out;
+  };
+  ScratchDir dir;
+  // Some exporters start binary headers with "solid": the length decides.
+  for (const char* header : {"binary header", "solid but binary"}) {
+    auto m = read_polygon_mesh(dir.write("b.stl", binary(header)));
+    ASSERT_TRUE(m.ok()) << header << ": " << m.status().message();
+    EXPECT_EQ(m->positions.size(), 4u) << header;  // repeated corners welded
+    EXPECT_EQ(m->num_faces(), 4u) << header;
+  }
+  std::string cut = binary("binary header");
+  cut.resize(cut.size() - 7);
+  auto bad = read_polygon_mesh(dir.write("cut.stl", cut));
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.status().message().find("says 4 triangles"), std::string::npos) << bad.status().message();
 }
 
 TEST(MeshIo, ReadsPlyTriangleStrips) {
@@ -128,7 +195,19 @@ INSTANTIATE_TEST_SUITE_P(
                       BadInput{"huge.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n4294967295 0 1 2\n", "line 6"},
                       BadInput{"counts.off", "OFF\n49999999999999999 1 0\n0 0 0\n", "only 1 lines follow"},
                       BadInput{"nofaces.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n", "no faces"},
-                      BadInput{"flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n", "degenerate"}),
+                      BadInput{"flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n", "degenerate"},
+                      // An `f` line without corners aborted OpenMesh's OBJ reader (fuzz/).
+                      BadInput{"nocorners.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf \nf 1 2 3\n", "line 4: face has 0 corners"},
+                      BadInput{"zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", "vertex index 0"},
+                      BadInput{"relative.obj", "v 0 0 0\nv 1 0 0\nf -1 -2 -3\nv 0 1 0\n", "line 3"},
+                      BadInput{"letters.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x/3\n", "'x/3'"},
+                      BadInput{"bigindex.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999999999999\n", "line 4"},
+                      BadInput{"range2.obj", "v 0 0 0\nv 1 0 0\nf 1 2 3\n#\n", "line 3: face uses vertex index 3"},
+                      BadInput{"garbage.stl", "not an stl", "not an STL file"},
+                      BadInput{"short.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\n",
+                               "line 6: facet has 2 vertices"},
+                      BadInput{"open.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n", "ends inside a facet"},
+                      BadInput{"nan.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 nan 0\n", "line 4"}),
     [](const auto& test_param) {
       std::string n = test_param.param.name;
       for (auto& c : n) c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
@@ -139,7 +218,7 @@ TEST(MeshIo, FailedWriteLeavesExistingFileAlone) {
   ScratchDir dir;
   const std::string path = dir.write("keep.obj", "original");
   EXPECT_FALSE(write_mesh(test::unit_cube(), dir.file("no/such/folder/x.obj")).ok());
-  EXPECT_FALSE(write_mesh(test::unit_cube(), dir.file("x.stl")).ok());  // unsupported output
+  EXPECT_FALSE(write_mesh(test::unit_cube(), dir.file("x.xyz")).ok());  // unsupported output
   auto bytes = read_file_bytes(path);
   ASSERT_TRUE(bytes.ok());
   EXPECT_EQ(bytes.value(), "original");
