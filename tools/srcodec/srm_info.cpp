@@ -18,7 +18,9 @@ Status print_srm_info(const std::string& path, bool json) {
   std::vector<uint64_t> level_bytes(h.levels + 1, 0), plane_bytes(h.top_plane + 1, 0);
   for (int p = h.top_plane; p >= 0; --p)
     for (int l = 0; l <= h.levels; ++l) {
-      const uint64_t n = h.segments[h.segment_index(p, l)].length;
+      // A rate-controlled file's table ends where the encoder cut the stream.
+      const size_t index = h.segment_index(p, l);
+      const uint64_t n = index < h.segments.size() ? h.segments[index].length : 0;
       level_bytes[l] += n;
       plane_bytes[p] += n;
     }
