@@ -87,6 +87,9 @@ int auto_steps(const TriangleMesh& part, size_t sites, int levels) {
 // Lloyd cannot move them and new vertices fold the mesh (beast, 2 levels
 // without oversampling: 13114 empty cells, 8041 folded triangles, 38.7 dB).
 constexpr double kMinUniformRatio = 2.0;
+// The smallest default base mesh; a mesh with fewer vertices is its own base
+// mesh when the levels are fitted to it.
+constexpr size_t kMinDefaultBase = 100;
 
 }  // namespace
 
@@ -104,7 +107,8 @@ size_t default_base_vertices(size_t input_vertices, size_t components, int level
   const double budget = std::max(kAutoBudgetFactor * v, kAutoBudgetFloor);
   const double by_budget = budget / (8.0 * std::pow(4.0, std::max(levels, 0)));
   const double base = std::min(v / 24.0, by_budget);
-  return std::clamp<size_t>(static_cast<size_t>(std::llround(base)), std::max<size_t>(100, 4 * components), 4000);
+  return std::clamp<size_t>(static_cast<size_t>(std::llround(base)), std::max<size_t>(kMinDefaultBase, 4 * components),
+                            4000);
 }
 
 StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& options, RemeshReport* report) {
@@ -119,6 +123,20 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
   if (options.oversample < -1 || options.oversample > 3)
     return invalid_argument("remesh: oversample " + std::to_string(options.oversample) + "; use auto or 0 to 3");
   if (mesh.triangles.empty()) return invalid_mesh("remesh: the mesh has no triangles");
+  const bool fit = options.fit_levels && options.base_vertices == 0;
+  if (fit && mesh.positions.size() < kMinDefaultBase) {
+    RemeshOptions whole = options;
+    whole.fit_levels = false;
+    whole.levels = 0;
+    whole.oversample = 0;
+    whole.base_vertices = 0;
+    // Cutting non-manifold spots may have duplicated some vertices.
+    SRCODEC_ASSIGN_OR_RETURN(std::vector<ComponentMesh> pieces, split_into_manifold_components(mesh));
+    for (const ComponentMesh& piece : pieces) whole.base_vertices += piece.mesh.positions.size();
+    progress("the input has " + std::to_string(mesh.positions.size()) + " vertices, fewer than the smallest default " +
+             "base mesh (" + std::to_string(kMinDefaultBase) + "): it is the base mesh, with no levels");
+    return remesh(mesh, whole, report);
+  }
 
   SRCODEC_ASSIGN_OR_RETURN(std::vector<ComponentMesh> parts, split_into_manifold_components(mesh));
   rep.components = parts.size();
@@ -143,7 +161,17 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
   if (rep.oversample_steps > 0)
     progress("oversampled (up to " + std::to_string(rep.oversample_steps) + " steps per component): " +
              std::to_string(rep.oversampled_vertices) + " vertices, " + std::to_string(rep.seconds_oversample) + " s");
-  if (options.uniform && static_cast<double>(rep.oversampled_vertices) < kMinUniformRatio * finest)
+  if (options.uniform && static_cast<double>(rep.oversampled_vertices) < kMinUniformRatio * finest && fit &&
+      options.levels > 0) {
+    RemeshOptions fewer = options;
+    fewer.levels = options.levels - 1;
+    progress(std::to_string(options.levels) + " levels need about " +
+             std::to_string(static_cast<size_t>(kMinUniformRatio * finest)) + " input vertices, the input has " +
+             std::to_string(rep.oversampled_vertices) + (rep.oversample_steps > 0 ? " after oversampling" : "") +
+             ": trying " + std::to_string(fewer.levels));
+    return remesh(mesh, fewer, report);
+  }
+  if (options.uniform && options.levels > 0 && static_cast<double>(rep.oversampled_vertices) < kMinUniformRatio * finest)
     return invalid_argument(
         "remesh: " + std::to_string(options.levels) + " uniform levels over " + std::to_string(base_total) +
         " base vertices make about " + std::to_string(static_cast<size_t>(finest)) + " vertices, but the input has " +

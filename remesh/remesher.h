@@ -19,6 +19,11 @@ namespace srcodec {
 
 struct RemeshOptions {
   int levels = 4;  // 0..12
+  // `levels` is an upper bound, as when the user did not choose it: a mesh
+  // too small for it gets as many levels as its vertices support, and one
+  // with fewer vertices than the smallest default base mesh becomes the base
+  // mesh itself (no levels). Only with the default base size.
+  bool fit_levels = false;
   // Base mesh vertices over all components; 0 picks default_base_vertices.
   size_t base_vertices = 0;
   double threshold = 0.0;  // Eq. 5's epsilon, in vertices of the oversampled input

@@ -5,9 +5,11 @@
 namespace srcodec {
 
 void add_remesh_flags(CLI::App* cmd, RemeshFlags& f) {
-  cmd->add_option("--levels", f.levels, "Refinement levels above the base mesh")
-      ->check(CLI::Range(0, 12))
-      ->capture_default_str();
+  f.levels_option = cmd->add_option("--levels", f.levels,
+                                    "Refinement levels above the base mesh (without this option: fewer for "
+                                    "inputs too small for 4, none below 100 vertices)")
+                        ->check(CLI::Range(0, 12))
+                        ->capture_default_str();
   cmd->add_option("--base-vertices", f.base_vertices,
                   "Base mesh vertices (default: from the input size and levels, 100..4000; see README)");
   auto* threshold = cmd->add_option("--threshold", f.threshold,
@@ -23,6 +25,7 @@ void add_remesh_flags(CLI::App* cmd, RemeshFlags& f) {
 StatusOr<RemeshOptions> to_remesh_options(const RemeshFlags& o) {
   RemeshOptions r;
   r.levels = o.levels;
+  r.fit_levels = o.levels_option == nullptr || o.levels_option->count() == 0;
   r.base_vertices = o.base_vertices;
   if (o.uniform && o.threshold >= 0.0)
     return invalid_argument("--uniform and --threshold exclude each other (uniform is threshold 0 with every "

@@ -16,6 +16,9 @@ struct RemeshFlags {
   size_t base_vertices = 0;
   double threshold = -1.0;
   bool uniform = false;
+  // Set by add_remesh_flags: without --levels, `levels` is fitted to small
+  // inputs (RemeshOptions::fit_levels).
+  const CLI::Option* levels_option = nullptr;
 };
 
 // Adds --levels, --base-vertices, --threshold, --uniform, --oversample, --scheme.
