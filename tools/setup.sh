@@ -2,6 +2,8 @@
 # Installs what srcodec needs from Debian's packages (only what is missing),
 # then configures and builds it in ./build. Safe to run again: the second run
 # installs nothing and rebuilds only what changed.
+# `tools/setup.sh --packages-only` installs and stops (tools/sanitize.sh and
+# tools/fuzz.sh use it: they build in their own folders).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -11,6 +13,7 @@ packages=(
   libdraco-dev draco libcgal-dev libtbb-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-numpy python3-matplotlib
+  clang libclang-rt-14-dev
 )
 missing=()
 for p in "${packages[@]}"; do
@@ -23,6 +26,8 @@ if ((${#missing[@]})); then
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
+
+if [ "${1:-}" = "--packages-only" ]; then exit 0; fi
 
 build_type="${SRCODEC_BUILD_TYPE:-Release}"
 if [ ! -f build/CMakeCache.txt ]; then
