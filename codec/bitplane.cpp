@@ -95,7 +95,7 @@ ForestIndex build_index(const CoefficientForest& f) {
   return x;
 }
 
-enum NodeFlag : uint8_t { kNegative = 1, kDescendants = 2, kSeen = 4 };
+enum NodeFlag : uint8_t { kNegative = 1, kDescendants = 2, kSeen = 4, kHasChildren = 8 };
 
 // The state both sides keep: what the decoder knows after each group.
 struct CoderState {
@@ -111,8 +111,10 @@ struct CoderState {
   CoderState(const CoefficientForest& f, const ForestIndex& x)
       : forest(f), index(x), models(x.model_sets), flags(f.parent.size(), 0), sig_plane(f.parent.size(), -1),
         low_plane(f.parent.size(), -1), magnitude(f.parent.size(), 0), reached((f.parent.size() + 63) / 64, 0) {
-    for (size_t i = 0; i < f.parent.size(); ++i)
+    for (size_t i = 0; i < f.parent.size(); ++i) {
       if (f.parent[i] < 0) reached[i >> 6] |= uint64_t{1} << (i & 63);
+      if (x.child_begin[i] != x.child_begin[i + 1]) flags[i] = kHasChildren;
+    }
   }
 
   int sig_context(uint32_t n, int p) const {
@@ -151,7 +153,7 @@ struct CoderState {
         ++used;
       }
     }
-    const bool code_desc = !(flags[n] & kDescendants) && index.child_begin[n] != index.child_begin[n + 1];
+    const bool code_desc = (flags[n] & (kDescendants | kHasChildren)) == kHasChildren;
     if (code_desc) {
       desc = io.descendants(n, p, m.desc[desc_context(n, p, significant != 0)]);
       ++used;
@@ -177,10 +179,11 @@ struct CoderState {
     return true;
   }
 
-  // Codes every reached node of `level` at plane p, in index order. Returns
-  // false at the first group that io could not complete.
-  template <class Io>
-  bool code_level(int p, int level, Io& io, size_t* symbols) {
+  // Calls visit(n) for every reached node of `level` in index order (nodes
+  // that visit() makes reached are of later levels); stops at the first
+  // visit() that returns false and returns false then.
+  template <class Visit>
+  bool for_reached(int level, Visit&& visit) {
     const uint32_t begin = index.level_begin[level], end = index.level_begin[level + 1];
     if (begin >= end) return true;
     for (uint32_t w = begin >> 6; w <= (end - 1) >> 6; ++w) {
@@ -190,10 +193,17 @@ struct CoderState {
       while (bits != 0) {
         const uint32_t n = (w << 6) | static_cast<uint32_t>(__builtin_ctzll(bits));
         bits &= bits - 1;
-        if (!code_node(n, p, io, symbols)) return false;
+        if (!visit(n)) return false;
       }
     }
     return true;
+  }
+
+  // Codes every reached node of `level` at plane p, in index order. Returns
+  // false at the first group that io could not complete.
+  template <class Io>
+  bool code_level(int p, int level, Io& io, size_t* symbols) {
+    return for_reached(level, [&](uint32_t n) { return code_node(n, p, io, symbols); });
   }
 };
 
@@ -216,7 +226,7 @@ struct EncoderIo {
 };
 
 struct DecoderIo {
-  ArithmeticDecoder dec;
+  ArithmeticDecoder& dec;
 
   int significance(uint32_t, int, BitModel& m) { return dec.decode(m); }
   int refine(uint32_t, int, BitModel& m) { return dec.decode(m); }
@@ -224,6 +234,101 @@ struct DecoderIo {
   int descendants(uint32_t, int, BitModel& m) { return dec.decode(m); }
   bool ok() const { return dec.ok(); }
 };
+
+// Decodes every reached node of `level` at plane p from `dec`: CoderState::
+// code_node's group, written out on a register-held decoder (Cursor) while a
+// whole group's bytes are there (none of its symbols can then depend on
+// missing bytes), and code_node itself, with its checks, near the end.
+bool decode_level(CoderState& state, int p, int level, ArithmeticDecoder& dec, size_t* symbols) {
+  constexpr size_t kGroupSymbols = 3;
+  const int32_t* const parent = state.forest.parent.data();
+  const uint16_t* const model_set = state.index.model_set.data();
+  const uint32_t* const child_begin = state.index.child_begin.data();
+  const uint32_t* const children = state.index.children.data();
+  ModelSet* const models = state.models.data();
+  uint8_t* const flags = state.flags.data();
+  int8_t* const sig_plane = state.sig_plane.data();
+  int8_t* const low_plane = state.low_plane.data();
+  uint32_t* const magnitude = state.magnitude.data();
+  uint64_t* const reached = state.reached.data();
+  const int8_t plane = static_cast<int8_t>(p);
+  const uint32_t plane_bit = uint32_t{1} << p;
+
+  const uint32_t begin = state.index.level_begin[level], end = state.index.level_begin[level + 1];
+  if (begin >= end) return true;
+  ArithmeticDecoder::Cursor rc(dec);
+  size_t count = 0;
+  uint32_t w = begin >> 6;
+  uint64_t bits = 0;
+  bool fast = true;
+  // Next reached node of the level, or `end`.
+  const auto next_node = [&]() -> uint32_t {
+    while (bits == 0) {
+      if (++w > (end - 1) >> 6) return end;
+      bits = reached[w];
+      if (w == (end - 1) >> 6 && (end & 63) != 0) bits &= ~(~uint64_t{0} << (end & 63));
+    }
+    const uint32_t n = (w << 6) | static_cast<uint32_t>(__builtin_ctzll(bits));
+    bits &= bits - 1;
+    return n;
+  };
+  bits = reached[w] & (~uint64_t{0} << (begin & 63));
+  if (w == (end - 1) >> 6 && (end & 63) != 0) bits &= ~(~uint64_t{0} << (end & 63));
+  uint32_t n = next_node();
+  for (; n != end; n = next_node()) {
+    if (!rc.room(kGroupSymbols)) {
+      fast = false;
+      break;
+    }
+    ModelSet& m = models[model_set[n]];
+    const int sp = sig_plane[n];
+    uint8_t f = flags[n];
+    const int unseen = (f & kSeen) ? 0 : 1;
+    int significant = 0;
+    if (sp >= 0) {
+      magnitude[n] |= static_cast<uint32_t>(rc.decode(m.refine)) << p;
+      low_plane[n] = plane;
+      ++count;
+    } else {
+      const int32_t up = parent[n];
+      int bucket = 0, sign_ctx = 0;
+      if (up >= 0) {
+        const int psp = sig_plane[up];
+        bucket = psp < 0 ? 1 : 2 + std::min(psp - p, 2);
+        sign_ctx = psp < 0 ? 0 : ((flags[up] & kNegative) ? 2 : 1);
+      }
+      significant = rc.decode(m.sig[bucket * 2 + unseen]);
+      ++count;
+      if (significant) {
+        if (rc.decode(m.sign[sign_ctx])) f |= kNegative;
+        ++count;
+        sig_plane[n] = plane;
+        low_plane[n] = plane;
+        magnitude[n] = plane_bit;
+      }
+    }
+    if ((f & (kDescendants | kHasChildren)) == kHasChildren) {
+      const int own = sp >= 0 ? 2 + std::min(sp - p - 1, 1) : significant;
+      ++count;
+      if (rc.decode(m.desc[own * 2 + unseen])) {
+        f |= kDescendants;
+        for (uint32_t c = child_begin[n]; c < child_begin[n + 1]; ++c) {
+          const uint32_t child = children[c];
+          reached[child >> 6] |= uint64_t{1} << (child & 63);
+        }
+      }
+    }
+    flags[n] = f | kSeen;
+  }
+  rc.store(dec);
+  *symbols += count;
+  if (fast) return true;
+  // Near the end of the segment: the checked path for the rest.
+  DecoderIo checked{dec};
+  for (; n != end; n = next_node())
+    if (!state.code_node(n, p, checked, symbols)) return false;
+  return true;
+}
 
 uint32_t magnitude_of(int32_t v) {
   assert(v != INT32_MIN);
@@ -321,10 +426,12 @@ Status validate_segments(const std::vector<BitplaneSegmentView>& segments, int t
 
 std::vector<double> reconstruct(const CoderState& state) {
   const size_t n = state.flags.size();
+  double half_step[kMaxBitplane + 1];  // 2^(plane - 1): the middle of the unknown low bits
+  for (int p = 0; p <= kMaxBitplane; ++p) half_step[p] = std::ldexp(1.0, p - 1);
   std::vector<double> values(n, 0.0);
   for (size_t i = 0; i < n; ++i) {
     if (state.sig_plane[i] < 0) continue;
-    const double v = state.magnitude[i] + std::ldexp(1.0, state.low_plane[i] - 1);
+    const double v = state.magnitude[i] + half_step[state.low_plane[i]];
     values[i] = (state.flags[i] & kNegative) ? -v : v;
   }
   return values;
@@ -359,9 +466,9 @@ StatusOr<std::vector<double>> decode_bitplanes(const CoefficientForest& forest, 
       while (next < segments.size() && stream_key(segments[next], top_plane) < key) ++next;
       const bool present = next < segments.size() && segments[next].plane == p && segments[next].level == l;
       if (present) {
-        DecoderIo io{ArithmeticDecoder(segments[next].data, segments[next].size)};
+        ArithmeticDecoder dec(segments[next].data, segments[next].size);
         ++next;
-        stopped = !state.code_level(p, l, io, &st.symbols);
+        stopped = !decode_level(state, p, l, dec, &st.symbols);
       } else {
         stopped = true;
       }

@@ -22,36 +22,10 @@
 namespace srcodec {
 namespace {
 
-constexpr uint32_t kTopValue = 1u << 24;  // normalize when range drops below
-constexpr int kModelBits = 16;
-constexpr uint32_t kModelOne = 1u << kModelBits;
-constexpr int kMaxShift = 7;  // slowest adaptation: rate 1/128 (6 and 5 cost 0.3% and 1.1% in bitplane_test)
+using range_coder_detail::kModelBits;
+using range_coder_detail::kTopValue;
+using range_coder_detail::update;
 constexpr uint64_t kMaxSlack = 1ull << 40;  // saturation; anything >= 2^32 decides nothing
-
-// Adaptation shift after `seen` symbols: about log2(seen + 2), i.e. a rate
-// near 1/(seen + 2) (a running mean) until it reaches 2^-kMaxShift.
-constexpr int shift_for(int seen) {
-  int s = 1;
-  while (s < kMaxShift && (1 << s) + (1 << (s - 1)) <= seen + 2) ++s;
-  return s;
-}
-// Models stop counting once the rate is final.
-constexpr int kSeenLimit = [] {
-  int n = 0;
-  while (shift_for(n) < kMaxShift) ++n;
-  return n;
-}();
-static_assert(kSeenLimit < 255, "seen counter must fit in uint8_t");
-
-inline void update(BitModel& m, int bit) {
-  const int s = shift_for(m.seen);
-  if (bit) {
-    m.p = static_cast<uint16_t>(m.p - (m.p >> s));
-  } else {
-    m.p = static_cast<uint16_t>(m.p + ((kModelOne - m.p) >> s));
-  }
-  if (m.seen < kSeenLimit) ++m.seen;
-}
 
 }  // namespace
 
@@ -129,37 +103,9 @@ ArithmeticDecoder::ArithmeticDecoder(const uint8_t* data, size_t size)
   for (int i = 0; i < 4; ++i) code_ = (code_ << 8) | next_byte();
 }
 
-uint8_t ArithmeticDecoder::next_byte() {
-  if (pos_ < size_) {
-    slack_ <<= 8;  // stays 0: real bytes come before any missing one
-    return data_[pos_++];
-  }
+uint8_t ArithmeticDecoder::missing_byte() {
   slack_ = slack_ >= kMaxSlack ? kMaxSlack : (slack_ << 8) | 0xFFu;
   return 0;
-}
-
-void ArithmeticDecoder::normalize() {
-  while (range_ < kTopValue) {
-    range_ <<= 8;
-    code_ = (code_ << 8) | next_byte();
-  }
-}
-
-int ArithmeticDecoder::decode(BitModel& model) {
-  const uint32_t bound = (range_ >> kModelBits) * model.p;
-  int bit;
-  if (code_ < bound) {
-    if (slack_ != 0 && uint64_t{code_} + slack_ >= bound) ok_ = false;
-    range_ = bound;
-    bit = 0;
-  } else {
-    code_ -= bound;
-    range_ -= bound;
-    bit = 1;
-  }
-  update(model, bit);
-  normalize();
-  return bit;
 }
 
 uint32_t ArithmeticDecoder::decode_raw(int bits) {

@@ -1,6 +1,7 @@
 #include "codec/srm_codec.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <future>
 
@@ -27,14 +28,31 @@ struct ForestLayout {
 
 ForestLayout build_forest(const TriangleHierarchy& h, int levels) {
   ForestLayout out;
-  std::vector<std::vector<int32_t>> by_level(levels + 1);
+  // The vertices of levels 0 .. `levels`, by level, each level in id order
+  // (a counting sort).
+  std::vector<size_t> level_begin(levels + 2, 0);
   for (int32_t v = 0; v < h.vertex_count(); ++v) {
     const int32_t l = h.vertex_level(v);
-    if (l <= levels) by_level[l].push_back(v);
+    if (l <= levels) ++level_begin[l + 1];
   }
+  for (int f = 0; f <= levels; ++f) level_begin[f + 1] += level_begin[f];
+  std::vector<int32_t> by_level(level_begin[levels + 1]);
+  {
+    std::vector<size_t> fill(level_begin.begin(), level_begin.end() - 1);
+    for (int32_t v = 0; v < h.vertex_count(); ++v) {
+      const int32_t l = h.vertex_level(v);
+      if (l <= levels) by_level[fill[l]++] = v;
+    }
+  }
+  const size_t nodes = by_level.size() * kSrmComponents;
+  out.forest.parent.reserve(nodes);
+  out.forest.level.reserve(nodes);
+  out.forest.context_class.reserve(nodes);
+  out.vertex.reserve(by_level.size());
   out.first_node.assign(h.vertex_count(), -1);
   for (int f = 0; f <= levels; ++f) {
-    for (int32_t v : by_level[f]) {
+    for (size_t k = level_begin[f]; k < level_begin[f + 1]; ++k) {
+      const int32_t v = by_level[k];
       int32_t parent = -1;
       if (f >= 2) {
         const auto e = h.parent_edge(v);
@@ -223,8 +241,15 @@ StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const DecodeOptions& option
   // The wavelet plan needs only the hierarchy, the coefficients only the
   // forest: build the plan on a second thread meanwhile. Both are pure
   // functions of the hierarchy, so the result does not depend on timing.
-  std::future<StatusOr<LiftingPlan>> plan_job =
-      std::async(std::launch::async, [&hier, level] { return LiftingPlan::build(hier, level); });
+  // The output triangles are listed by whichever thread gets to them first:
+  // the plan's thread after the plan, or this one after the coefficients.
+  std::atomic<bool> triangles_claimed{false};
+  std::vector<std::array<int32_t, 3>> triangles;
+  std::future<StatusOr<LiftingPlan>> plan_job = std::async(std::launch::async, [&] {
+    StatusOr<LiftingPlan> plan = LiftingPlan::build(hier, level);
+    if (!triangles_claimed.exchange(true)) triangles = hier.level_triangles(level);
+    return plan;
+  });
   const ForestLayout layout = build_forest(hier, level);
   std::vector<BitplaneSegmentView> views;
   bool cut = false;
@@ -250,23 +275,30 @@ StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const DecodeOptions& option
   const std::vector<double> steps = step_table(h);
   std::vector<Eigen::Vector3d> base_positions = base->positions;
   std::vector<Eigen::Vector3d> detail(hier.vertex_count(), Eigen::Vector3d::Zero());
-  for (size_t node = 0; node < values->size(); ++node) {
-    const int32_t v = layout.vertex[node / kSrmComponents];
-    const int c = static_cast<int>(node % kSrmComponents);
+  const double* value = values->data();
+  for (size_t k = 0; k < layout.vertex.size(); ++k, value += kSrmComponents) {
+    const int32_t v = layout.vertex[k];
     const int f = hier.vertex_level(v);
-    const double value = values.value()[node] * steps[f * kSrmComponents + c];
-    if (f == 0)
-      base_positions[v][c] += value;
-    else
-      detail[v][c] = value;
+    const double* step = &steps[f * kSrmComponents];
+    if (f == 0) {
+      for (int c = 0; c < kSrmComponents; ++c) base_positions[v][c] += value[c] * step[c];
+    } else {
+      // Zeros (never significant) stay as they are: most of a short stream.
+      for (int c = 0; c < kSrmComponents; ++c)
+        if (value[c] != 0.0) detail[v][c] = value[c] * step[c];
+    }
   }
-  const std::vector<std::array<int32_t, 3>> triangles = hier.level_triangles(level);
   // (An early return before this joins the job in the future's destructor,
   // which runs before `hier` is destroyed.)
+  if (!triangles_claimed.exchange(true)) triangles = hier.level_triangles(level);
   StatusOr<LiftingPlan> plan = plan_job.get();
   if (!plan.ok()) return plan.status().with_context("wavelet plan");
-  const std::vector<Eigen::Vector3d> positions = inverse_lifting(plan.value(), base_positions, detail, level);
-  out.mesh = compact_mesh(positions, triangles);
+  std::vector<Eigen::Vector3d> positions = inverse_lifting(plan.value(), base_positions, detail, level);
+  // Every vertex of the replayed hierarchy (levels <= `level`, ids 0 ..
+  // vertex_count - 1) is a corner of some triangle of the level mesh: the
+  // mesh is already compact (compact_mesh would copy it unchanged).
+  out.mesh.positions = std::move(positions);
+  out.mesh.triangles = std::move(triangles);
   return out;
 }
 

@@ -10,6 +10,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <future>
 #include <string>
 
 #include <Eigen/Geometry>
@@ -20,6 +22,10 @@ namespace srcodec {
 namespace {
 
 using Eigen::Vector3d;
+
+// Levels with at least this many odd vertices run their frame and predict
+// steps on two threads in inverse_lifting (a thread costs tens of microseconds).
+constexpr std::ptrdiff_t kParallelOdds = 16384;
 
 // Relative size below which a normal or tangent counts as degenerate.
 constexpr double kDegenerate = 1e-12;
@@ -186,22 +192,50 @@ std::vector<Vector3d> inverse_lifting(const LiftingPlan& plan, const std::vector
   std::copy_n(base.begin(), std::min({nv, base.size(), static_cast<size_t>(plan.base_vertex_count())}), x.begin());
   level = std::clamp(level, 0, plan.levels());
   const LiftingPlan::Tap* taps = plan.taps().data();
-  std::vector<Vector3d> world;
+  const size_t details = detail.size();
   for (int32_t j = 1; j <= level; ++j) {
     const LiftingPlan::Odd* begin = plan.odd_begin(j);
     const LiftingPlan::Odd* end = plan.odd_end(j);
-    world.resize(static_cast<size_t>(end - begin));
-    for (const auto* o = begin; o != end; ++o) {
-      const Frame f = odd_frame(*o, x);
-      const Vector3d d = static_cast<size_t>(o->v) < detail.size() ? detail[o->v] : Vector3d::Zero();
-      world[o - begin] = d.x() * f.n + d.y() * f.t + d.z() * f.s;
+    // The world-space detail waits in the odd vertex's own slot (still zero,
+    // and read by no stencil or frame of this level) until the predict step.
+    // A zero detail needs no frame and moves nothing.
+    // The frame and predict steps touch each odd vertex's own slot only (and
+    // read even ones): on a big level, half of each runs on a second thread.
+    // The update step scatters to shared even vertices and stays serial.
+    const auto to_world = [&](const LiftingPlan::Odd* from, const LiftingPlan::Odd* to) {
+      for (const auto* o = from; o != to; ++o) {
+        if (static_cast<size_t>(o->v) >= details) continue;
+        const Vector3d& d = detail[o->v];
+        if (d.x() == 0.0 && d.y() == 0.0 && d.z() == 0.0) continue;
+        const Frame f = odd_frame(*o, x);
+        x[o->v] = d.x() * f.n + d.y() * f.t + d.z() * f.s;
+      }
+    };
+    const auto add_prediction = [&](const LiftingPlan::Odd* from, const LiftingPlan::Odd* to) {
+      for (const auto* o = from; o != to; ++o) x[o->v] += predict(*o, taps, x);
+    };
+    const bool split = end - begin >= kParallelOdds;
+    const LiftingPlan::Odd* middle = begin + (end - begin) / 2;
+    if (split) {
+      std::future<void> half = std::async(std::launch::async, to_world, middle, end);
+      to_world(begin, middle);
+      half.get();
+    } else {
+      to_world(begin, end);
     }
     for (const auto* o = begin; o != end; ++o) {
-      const Vector3d& d = world[o - begin];
+      const Vector3d d = x[o->v];
+      if (d.x() == 0.0 && d.y() == 0.0 && d.z() == 0.0) continue;
       x[o->a] -= o->update_a * d;
       x[o->b] -= o->update_b * d;
     }
-    for (const auto* o = begin; o != end; ++o) x[o->v] = predict(*o, taps, x) + world[o - begin];
+    if (split) {
+      std::future<void> half = std::async(std::launch::async, add_prediction, middle, end);
+      add_prediction(begin, middle);
+      half.get();
+    } else {
+      add_prediction(begin, end);
+    }
   }
   return x;
 }

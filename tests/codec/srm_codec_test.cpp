@@ -93,6 +93,11 @@ TEST(SrmCodec, FullStreamReconstructsEveryLevelsConnectivityAndTheFinestPosition
       ASSERT_TRUE(l.ok()) << l.status().message();
       EXPECT_EQ(l->level, level);
       EXPECT_EQ(l->mesh.triangles.size(), c.srm.hierarchy.level_triangles(level).size()) << level;
+      // The decoder hands out its vertices and triangles as they are: every
+      // vertex must be used, as compact_mesh would leave it.
+      const TriangleMesh compact = compact_mesh(l->mesh.positions, l->mesh.triangles);
+      EXPECT_EQ(compact.positions, l->mesh.positions) << level;
+      EXPECT_EQ(compact.triangles, l->mesh.triangles) << level;
     }
   }
 }
