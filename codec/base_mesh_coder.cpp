@@ -528,26 +528,40 @@ class Decoder {
       : dec_(payload, size), header_size_(header_size), grid_(grid),
         vertex_count_(vertex_count), triangle_count_(triangle_count) {}
 
-  StatusOr<DecodedBaseMesh> run() {
+  // `prefix`: the payload may be cut; the result is then the triangles (and
+  // their vertices) decoded before the first symbol that depended on a
+  // missing byte. Vertices are numbered in the step that first uses them, so
+  // the first t triangles use exactly the first v vertices.
+  StatusOr<DecodedBaseMesh> run(bool prefix) {
+    size_t good_triangles = 0;
+    size_t good_vertices = 0;
     while (cb_.triangles().size() < triangle_count_) {
       const int32_t gate = cb_.gate();
       const Status s = gate < 0 ? start_component() : decode_gate(gate);
+      if (prefix && !dec_.ok()) return first(good_triangles, good_vertices);
       if (!s.ok()) return error(s.message());
       if (!dec_.ok()) return error("the payload ends early");
+      good_triangles = cb_.triangles().size();
+      good_vertices = q_.size();
     }
     if (cb_.vertex_count() != static_cast<int32_t>(vertex_count_)) {
       return error("decoded " + std::to_string(cb_.vertex_count()) + " vertices, the header says " +
                    std::to_string(vertex_count_));
     }
     if (!dec_.ok()) return error("the payload ends early");
-    DecodedBaseMesh mesh;
-    mesh.triangles = cb_.take_triangles();
-    mesh.positions.reserve(q_.size());
-    for (const auto& q : q_) mesh.positions.push_back(grid_.dequantize(q));
-    return mesh;
+    return first(cb_.triangles().size(), q_.size());
   }
 
  private:
+  DecodedBaseMesh first(size_t triangles, size_t vertices) {
+    DecodedBaseMesh mesh;
+    mesh.triangles = cb_.take_triangles();
+    mesh.triangles.resize(triangles);
+    mesh.positions.reserve(vertices);
+    for (size_t v = 0; v < vertices; ++v) mesh.positions.push_back(grid_.dequantize(q_[v]));
+    return mesh;
+  }
+
   Status error(const std::string& what) const {
     return parse_error("base mesh: " + what + " at byte offset " +
                        std::to_string(header_size_ + dec_.bytes_consumed()));
@@ -647,10 +661,22 @@ StatusOr<BaseMeshCode> encode_base_mesh(const std::vector<Eigen::Vector3d>& posi
   return code;
 }
 
-StatusOr<DecodedBaseMesh> decode_base_mesh(const uint8_t* data, size_t size, const QuantizationGrid& grid,
-                                           size_t max_vertices, size_t max_triangles) {
+namespace {
+
+StatusOr<DecodedBaseMesh> decode(const uint8_t* data, size_t size, const QuantizationGrid& grid,
+                                 size_t max_vertices, size_t max_triangles, bool prefix) {
   SRCODEC_RETURN_IF_ERROR(check_grid(grid));
   if (data == nullptr && size > 0) return invalid_argument("base mesh: no data");
+  if (prefix) {
+    // Nothing decodes before the version byte and the three counts (varints)
+    // are all there.
+    size_t pos = 1;
+    for (int k = 0; k < 3 && pos <= size; ++k) {
+      while (pos < size && (data[pos] & 0x80)) ++pos;
+      ++pos;  // past the varint's last byte
+    }
+    if (size < 1 || pos > size) return DecodedBaseMesh{};
+  }
   if (size < 1) return parse_error("base mesh: empty stream at byte offset 0");
   if (data[0] != kVersion) {
     return parse_error("base mesh: unsupported version " + std::to_string(data[0]) + " at byte offset 0");
@@ -670,11 +696,23 @@ StatusOr<DecodedBaseMesh> decode_base_mesh(const uint8_t* data, size_t size, con
     return parse_error("base mesh: " + std::to_string(vertices) + " vertices cannot be used by " +
                        std::to_string(triangles) + " triangles" + at);
   }
-  if (payload != size - pos) {
+  if (prefix ? payload < size - pos : payload != size - pos) {
     return parse_error("base mesh: payload of " + std::to_string(payload) + " bytes declared, " +
                        std::to_string(size - pos) + " present" + at);
   }
-  return Decoder(data + pos, payload, pos, grid, vertices, triangles).run();
+  return Decoder(data + pos, size - pos, pos, grid, vertices, triangles).run(prefix);
+}
+
+}  // namespace
+
+StatusOr<DecodedBaseMesh> decode_base_mesh(const uint8_t* data, size_t size, const QuantizationGrid& grid,
+                                           size_t max_vertices, size_t max_triangles) {
+  return decode(data, size, grid, max_vertices, max_triangles, false);
+}
+
+StatusOr<DecodedBaseMesh> decode_base_mesh_prefix(const uint8_t* data, size_t size, const QuantizationGrid& grid,
+                                                  size_t max_vertices, size_t max_triangles) {
+  return decode(data, size, grid, max_vertices, max_triangles, true);
 }
 
 }  // namespace srcodec

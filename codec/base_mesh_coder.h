@@ -56,4 +56,12 @@ struct DecodedBaseMesh {
 StatusOr<DecodedBaseMesh> decode_base_mesh(const uint8_t* data, size_t size, const QuantizationGrid& grid,
                                            size_t max_vertices, size_t max_triangles);
 
+// The same for the first `size` bytes of a stream that may be longer (a file
+// cut inside its base mesh): the triangles, with their vertices, decoded
+// before the first symbol that depended on a missing byte (none while the
+// counts at the start are incomplete). Errors as decode_base_mesh for what
+// the present bytes get wrong.
+StatusOr<DecodedBaseMesh> decode_base_mesh_prefix(const uint8_t* data, size_t size, const QuantizationGrid& grid,
+                                                  size_t max_vertices, size_t max_triangles);
+
 }  // namespace srcodec

@@ -178,12 +178,22 @@ StatusOr<EncodedSrm> encode_srm(const SemiRegularMesh& mesh, const TriangleMesh&
 
 namespace {
 
-Status need_complete(const SrmChunk& c, const std::string& what, uint64_t file_size) {
-  if (!c.complete())
-    return parse_error("the file ends at byte " + std::to_string(file_size) + ", inside " + what + " (bytes " +
-                       std::to_string(c.offset) + ".." + std::to_string(c.offset + c.declared - 1) +
-                       "): at least the first " + std::to_string(c.offset + c.declared) + " bytes are needed");
-  return verify_chunk(c, false, what);
+// A file cut inside its base mesh: the base triangles decoded before the cut
+// (none while the chunk's counts are cut), at level 0. The chunk's checksum
+// cannot be checked; the decoder still refuses what the bytes present get wrong.
+StatusOr<DecodedSrm> decode_cut_base(const SrmFile& file) {
+  const SrmHeader& h = file.header;
+  StatusOr<DecodedBaseMesh> base = decode_base_mesh_prefix(file.base.bytes.data(), file.base.bytes.size(), grid_of(h),
+                                                           h.base_vertices, h.base_triangles);
+  if (!base.ok()) return base.status().with_context("base mesh at byte " + std::to_string(file.base.offset));
+  DecodedSrm out;
+  out.level = 0;
+  out.base_vertices = h.base_vertices;
+  out.base_cut = true;
+  out.bytes_used = file.base.offset + file.base.bytes.size();
+  out.mesh.positions = std::move(base->positions);
+  out.mesh.triangles = std::move(base->triangles);
+  return out;
 }
 
 // Replays the flags up to `level`; returns the level reached (lower when the
@@ -214,7 +224,8 @@ StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const DecodeOptions& option
   if (total > options.max_vertices)
     return invalid_argument("level " + std::to_string(level) + " has " + std::to_string(total) +
                             " vertices, over the limit of " + std::to_string(options.max_vertices));
-  SRCODEC_RETURN_IF_ERROR(need_complete(file.base, "the base mesh", file.file_size));
+  if (!file.base.complete()) return decode_cut_base(file);
+  SRCODEC_RETURN_IF_ERROR(verify_chunk(file.base, false, "the base mesh"));
   StatusOr<DecodedBaseMesh> base = decode_base_mesh(file.base.bytes.data(), file.base.bytes.size(), grid_of(h),
                                                     h.base_vertices, h.base_triangles);
   if (!base.ok()) return base.status().with_context("base mesh at byte " + std::to_string(file.base.offset));

@@ -52,10 +52,14 @@ struct DecodedSrm {
   int last_plane = -1;       // the lowest bit plane decoded completely, -1: none
   uint64_t bytes_used = 0;   // the file's bytes that went into the mesh
   size_t base_vertices = 0;
+  // The file ends inside its base mesh: `mesh` holds the base triangles
+  // decoded before the cut (maybe none) and level is 0.
+  bool base_cut = false;
 };
 
 // Decodes what `file` holds: a prefix decodes to the best mesh its bytes
-// allow; a cut header or base mesh, or a failed checksum, is an error.
+// allow (cut inside the base mesh: the base triangles before the cut); a
+// failed checksum is an error.
 StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const DecodeOptions& options = {});
 
 }  // namespace srcodec

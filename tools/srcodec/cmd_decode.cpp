@@ -46,6 +46,7 @@ Status run_decode(const DecodeCliOptions& o) {
         .field("vertices", decoded->mesh.positions.size())
         .field("triangles", decoded->mesh.triangles.size())
         .field("last_complete_plane", decoded->last_plane)
+        .field("base_cut", decoded->base_cut)
         .field("bytes_used", static_cast<size_t>(decoded->bytes_used))
         .field("bytes_present", static_cast<size_t>(file.file_size))
         .field("file_bytes", static_cast<size_t>(file.declared_size));
@@ -55,7 +56,10 @@ Status run_decode(const DecodeCliOptions& o) {
                 decoded->level, file.header.levels, decoded->mesh.positions.size(), decoded->mesh.triangles.size(),
                 static_cast<unsigned long long>(decoded->bytes_used),
                 static_cast<unsigned long long>(file.declared_size), o.output.c_str());
-    if (o.level >= 0 && decoded->level < o.level)
+    if (decoded->base_cut)
+      std::printf("  the file was cut inside its base mesh: %zu of its %llu triangles decoded\n",
+                  decoded->mesh.triangles.size(), static_cast<unsigned long long>(file.header.base_triangles));
+    else if (o.level >= 0 && decoded->level < o.level)
       std::printf("  the file was cut inside the refinement flags of level %d: decoded level %d instead\n",
                   decoded->level, decoded->level);
   }
