@@ -127,18 +127,24 @@ Status run_encode(const EncodeCliOptions& o) {
   } else {
     SRCODEC_ASSIGN_OR_RETURN(double best, cutter.psnr(segment_bytes, 60000));
     target = o.psnr;
-    if (target < 0) {
-      target = best - 1.0;
-      say("no rate option given: aiming at " + std::to_string(target) +
-          " dB, 1 dB below the whole stream (use --bpv, --bytes or --psnr to choose)");
+    if (target < 0 && !std::isfinite(best)) {
+      // No error at all (a tiny mesh that is its own base mesh): nothing to trade.
+      say("no rate option given: the whole stream reproduces the input exactly, so all of it is kept");
+      rate = "the whole stream";
+    } else {
+      if (target < 0) {
+        target = best - 1.0;
+        say("no rate option given: aiming at " + std::to_string(target) +
+            " dB, 1 dB below the whole stream (use --bpv, --bytes or --psnr to choose)");
+      }
+      rate = "--psnr " + std::to_string(target);
+      if (best < target)
+        return invalid_argument("--psnr " + std::to_string(target) + " is out of reach: the whole stream gives " +
+                                std::to_string(best) + " dB, limited by the remesh (try more --levels or " +
+                                "--base-vertices)");
+      say("searching for the shortest stream that reaches " + std::to_string(target) + " dB");
+      SRCODEC_ASSIGN_OR_RETURN(segment_bytes, segment_bytes_for_psnr(cutter, target));
     }
-    rate = "--psnr " + std::to_string(target);
-    if (best < target)
-      return invalid_argument("--psnr " + std::to_string(target) + " is out of reach: the whole stream gives " +
-                              std::to_string(best) + " dB, limited by the remesh (try more --levels or " +
-                              "--base-vertices)");
-    say("searching for the shortest stream that reaches " + std::to_string(target) + " dB");
-    SRCODEC_ASSIGN_OR_RETURN(segment_bytes, segment_bytes_for_psnr(cutter, target));
   }
   SRCODEC_ASSIGN_OR_RETURN(std::vector<uint8_t> file, cutter.cut(segment_bytes));
   const uint64_t keep = file.size();
