@@ -108,11 +108,14 @@ void append_number(std::string& out, double value) {
   out.append(buffer, r.ptr);
 }
 
-std::string obj_text(const TriangleMesh& mesh) {
-  std::string out = "# written by srcodec\n";
-  out.reserve(mesh.positions.size() * 40 + mesh.triangles.size() * 24);
+// One line per vertex (`vertex_tag` and three numbers), then one per
+// triangle (`face_tag` and three indices counted from `first_index`): the
+// body of OBJ and OFF files.
+void append_text_mesh(std::string& out, const TriangleMesh& mesh, const char* vertex_tag, const char* face_tag,
+                      int32_t first_index) {
+  out.reserve(out.size() + mesh.positions.size() * 40 + mesh.triangles.size() * 24);
   for (const auto& p : mesh.positions) {
-    out += "v ";
+    out += vertex_tag;
     append_number(out, p.x());
     out += ' ';
     append_number(out, p.y());
@@ -121,8 +124,14 @@ std::string obj_text(const TriangleMesh& mesh) {
     out += '\n';
   }
   for (const auto& t : mesh.triangles) {
-    out += "f " + std::to_string(t[0] + 1) + ' ' + std::to_string(t[1] + 1) + ' ' + std::to_string(t[2] + 1) + '\n';
+    out += face_tag + std::to_string(t[0] + first_index) + ' ' + std::to_string(t[1] + first_index) + ' ' +
+           std::to_string(t[2] + first_index) + '\n';
   }
+}
+
+std::string obj_text(const TriangleMesh& mesh) {
+  std::string out = "# written by srcodec\n";
+  append_text_mesh(out, mesh, "v ", "f ", 1);
   return out;
 }
 
@@ -160,17 +169,7 @@ std::string ply_bytes(const TriangleMesh& mesh) {
 std::string off_text(const TriangleMesh& mesh) {
   std::string out = "OFF\n# written by srcodec\n" + std::to_string(mesh.positions.size()) + " " +
                     std::to_string(mesh.triangles.size()) + " 0\n";
-  for (const auto& p : mesh.positions) {
-    append_number(out, p.x());
-    out += ' ';
-    append_number(out, p.y());
-    out += ' ';
-    append_number(out, p.z());
-    out += '\n';
-  }
-  for (const auto& t : mesh.triangles) {
-    out += "3 " + std::to_string(t[0]) + ' ' + std::to_string(t[1]) + ' ' + std::to_string(t[2]) + '\n';
-  }
+  append_text_mesh(out, mesh, "", "3 ", 0);
   return out;
 }
 
