@@ -106,12 +106,12 @@ TEST(BadMeshCli, TinyMeshesAreTheirOwnBaseMesh) {
 // centred at 1e7 must code as well as at the origin.
 TEST(BadMeshCli, CoordinatesAround1e7CodeAsWellAsAtTheOrigin) {
   test::ScratchDir dir;
-  const TriangleMesh sphere = test::icosphere(3, 3.0);  // 642 vertices
+  const TriangleMesh sphere = test::icosphere(2, 3.0);  // 162 vertices
   const Outcome near = round_trip(dir, "near.obj", obj_of(sphere));
   const Outcome far = round_trip(dir, "far.obj", obj_of(sphere, Eigen::Vector3d(1e7, -2e7, 3e7)));
   ASSERT_EQ(near.encode_exit, 0) << near.error;
   ASSERT_EQ(far.encode_exit, 0) << far.error;
-  EXPECT_GT(near.psnr, 50.0);
+  EXPECT_GT(near.psnr, 45.0);
   EXPECT_NEAR(far.psnr, near.psnr, 1.0);
 }
 
