@@ -10,6 +10,7 @@
 #include "codec/srm_codec.h"
 #include "format/file_io.h"
 #include "format/mesh_io.h"
+#include "tools/measure/rate_control.h"
 #include "tools/measure/surface_distance.h"
 #include "tools/srcodec/commands.h"
 #include "tools/srcodec/json_writer.h"
@@ -28,65 +29,6 @@ struct EncodeCliOptions {
   size_t samples = 200000;
   bool json = false, quiet = false;
 };
-
-// Rate control over the embedded stream: the file that keeps the first
-// `segment_bytes` bytes of coefficient segments (truncate_srm), its size, and
-// the PSNR against the input of the mesh it decodes to.
-class StreamCutter {
- public:
-  StreamCutter(const TriangleMesh& input, const std::vector<uint8_t>& full) : input_(input), full_(full) {
-    const StatusOr<SrmFile> f = parse_srm(full.data(), full.size());
-    if (f.ok())
-      for (const SrmChunk& c : f->segments) segment_bytes_ += c.declared;
-  }
-  uint64_t segment_bytes() const { return segment_bytes_; }
-  StatusOr<std::vector<uint8_t>> cut(uint64_t segment_bytes) const { return truncate_srm(full_, segment_bytes); }
-  StatusOr<double> psnr(uint64_t segment_bytes, size_t samples) const {
-    SRCODEC_ASSIGN_OR_RETURN(std::vector<uint8_t> file, cut(segment_bytes));
-    SRCODEC_ASSIGN_OR_RETURN(SrmFile f, parse_srm(file.data(), file.size()));
-    SRCODEC_ASSIGN_OR_RETURN(DecodedSrm d, decode_srm(f));
-    SurfaceDistanceOptions o;
-    o.samples_per_surface = samples;
-    SRCODEC_ASSIGN_OR_RETURN(SurfaceDistance s, surface_distance(input_, d.mesh, o));
-    return s.psnr;
-  }
-  // The most segment bytes whose file fits in `bytes` (the table shrinks
-  // with the segments it lists, so this is a search, not a subtraction).
-  StatusOr<uint64_t> segment_bytes_within(uint64_t bytes) const {
-    uint64_t lo = 0, hi = segment_bytes_;
-    while (lo < hi) {
-      const uint64_t mid = lo + (hi - lo + 1) / 2;
-      SRCODEC_ASSIGN_OR_RETURN(std::vector<uint8_t> file, cut(mid));
-      if (file.size() <= bytes) {
-        lo = mid;
-      } else {
-        hi = mid - 1;
-      }
-    }
-    return lo;
-  }
-
- private:
-  const TriangleMesh& input_;
-  const std::vector<uint8_t>& full_;
-  uint64_t segment_bytes_ = 0;
-};
-
-// The fewest segment bytes whose PSNR reaches `target` (bisection: the
-// embedded stream's distortion does not grow with its length), measured with
-// fewer samples than the final figure.
-StatusOr<uint64_t> segment_bytes_for_psnr(const StreamCutter& cutter, double target) {
-  constexpr size_t kSearchSamples = 60000;
-  uint64_t lo = 0, hi = cutter.segment_bytes();
-  SRCODEC_ASSIGN_OR_RETURN(double at_lo, cutter.psnr(lo, kSearchSamples));
-  if (at_lo >= target) return lo;
-  while (hi - lo > std::max<uint64_t>(8, hi / 2000)) {
-    const uint64_t mid = lo + (hi - lo) / 2;
-    SRCODEC_ASSIGN_OR_RETURN(double p, cutter.psnr(mid, kSearchSamples));
-    (p >= target ? hi : lo) = mid;
-  }
-  return hi;
-}
 
 Status run_encode(const EncodeCliOptions& o) {
   SRCODEC_ASSIGN_OR_RETURN(RemeshOptions remesh_options, to_remesh_options(o.remesh));
