@@ -5,11 +5,16 @@
 //    stream and of a rate-controlled file, median of runs, in output
 //    triangles per second;
 //  - Draco decode of the input mesh (cl 10, qp 11 and 14), median of runs, in
-//    output triangles per second.
+//    output triangles per second;
+//  - srcodec decode at equal quality to each Draco setting: Draco's decoded
+//    PSNR against the input (surface_distance with its defaults, as `srcodec
+//    compare` measures), then the shortest cut of the srcodec stream reaching
+//    that PSNR, found by `srcodec encode --psnr`'s own rate control
+//    (tools/measure/rate_control.h), and its decode timed.
 // Usage: codec_speed MESH... [--levels L] [--runs N] [--cache DIR]
 // --cache DIR keeps each encoded stream in DIR (named after the mesh and L)
 // and reuses it on later runs, skipping the remeshing and the encode timing:
-// for iterating on the decoder.
+// for iterating on the decoder. The equal-quality cuts are cached there too.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -24,6 +29,8 @@
 #include "format/mesh_io.h"
 #include "remesh/remesher.h"
 #include "tools/measure/draco_baseline.h"
+#include "tools/measure/rate_control.h"
+#include "tools/measure/surface_distance.h"
 
 namespace {
 
@@ -56,10 +63,37 @@ std::pair<double, size_t> time_decode(const std::vector<uint8_t>& bytes, int run
   return {ms, triangles};
 }
 
-std::string cache_path(const std::string& dir, const std::string& mesh, int levels) {
+std::string cache_path(const std::string& dir, const std::string& mesh, int levels, const std::string& what = "") {
   const size_t slash = mesh.find_last_of('/');
   return dir + "/" + (slash == std::string::npos ? mesh : mesh.substr(slash + 1)) + ".L" + std::to_string(levels) +
-         ".srm";
+         what + ".srm";
+}
+
+std::vector<uint8_t> read_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return {};
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void write_bytes(const std::string& path, const std::vector<uint8_t>& bytes) {
+  std::ofstream(path, std::ios::binary)
+      .write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+}
+
+// The shortest cut of `stream` whose PSNR against `input` reaches `target`,
+// as `srcodec encode --psnr target` chooses it; empty (and *best set) when
+// the whole stream stays below the target.
+StatusOr<std::vector<uint8_t>> cut_for_psnr(const TriangleMesh& input, const std::vector<uint8_t>& stream,
+                                            double target, double* best) {
+  const StreamCutter cutter(input, stream);
+  SRCODEC_ASSIGN_OR_RETURN(*best, cutter.psnr(cutter.segment_bytes(), 60000));
+  if (*best < target) return std::vector<uint8_t>{};
+  SRCODEC_ASSIGN_OR_RETURN(uint64_t segment_bytes, segment_bytes_for_psnr(cutter, target));
+  return cutter.cut(segment_bytes);
+}
+
+double psnr_of(const TriangleMesh& input, const TriangleMesh& decoded) {
+  return surface_distance(input, decoded).value().psnr;
 }
 
 // Remeshes and encodes `input` (median encode time in *encode_ms), or reads
@@ -68,8 +102,8 @@ std::vector<uint8_t> encoded_stream(const TriangleMesh& input, const std::string
                                     double* encode_ms) {
   *encode_ms = -1;
   if (!cached.empty()) {
-    std::ifstream in(cached, std::ios::binary);
-    if (in) return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    std::vector<uint8_t> bytes = read_bytes(cached);
+    if (!bytes.empty()) return bytes;
   }
   RemeshOptions options;
   options.levels = levels;
@@ -80,8 +114,7 @@ std::vector<uint8_t> encoded_stream(const TriangleMesh& input, const std::string
   }
   EncodedSrm encoded;
   *encode_ms = median_ms(runs, [&] { encoded = encode_srm(srm.value(), input).value(); });
-  if (!cached.empty()) std::ofstream(cached, std::ios::binary).write(reinterpret_cast<const char*>(encoded.bytes.data()),
-                                                                     static_cast<std::streamsize>(encoded.bytes.size()));
+  if (!cached.empty()) write_bytes(cached, encoded.bytes);
   return encoded.bytes;
 }
 
@@ -116,8 +149,34 @@ int run(const std::string& path, int levels, int runs, const std::string& cache_
     const DracoRoundTrip trip = draco_round_trip(input.value(), d).value();
     size_t tris = 0;
     const double ms = median_ms(runs, [&] { tris = draco_decode(trip.encoded).value().triangles.size(); });
-    std::printf("| %s | Draco decode qp %d | %zu B | %.1f ms | %.2f M tri/s |\n", path.c_str(), qp,
-                trip.encoded.size(), ms, tris / ms / 1e3);
+    const double draco_psnr = psnr_of(input.value(), trip.decoded);
+    std::printf("| %s | Draco decode qp %d (%.2f dB) | %zu B | %.1f ms | %.2f M tri/s |\n", path.c_str(), qp,
+                draco_psnr, trip.encoded.size(), ms, tris / ms / 1e3);
+    // srcodec at Draco's PSNR: the rate-controlled file `srcodec encode
+    // --psnr` would write from this stream (cached with the stream).
+    const std::string cached =
+        cache_dir.empty() ? "" : cache_path(cache_dir, path, levels, ".draco-qp" + std::to_string(qp));
+    std::vector<uint8_t> equal = cached.empty() ? std::vector<uint8_t>{} : read_bytes(cached);
+    if (equal.empty()) {
+      double best = 0;
+      StatusOr<std::vector<uint8_t>> cut = cut_for_psnr(input.value(), encoded.bytes, draco_psnr, &best);
+      if (!cut.ok()) {
+        std::fprintf(stderr, "%s\n", cut.status().message().c_str());
+        return 1;
+      }
+      if (cut->empty()) {
+        std::printf("| %s | srcodec decode at Draco qp %d's PSNR | out of reach: the whole stream gives %.2f dB | | |\n",
+                    path.c_str(), qp, best);
+        continue;
+      }
+      equal = std::move(cut.value());
+      if (!cached.empty()) write_bytes(cached, equal);
+    }
+    const auto [equal_ms, equal_tris] = time_decode(equal, runs);
+    const SrmFile equal_file = parse_srm(equal.data(), equal.size()).value();
+    const double equal_psnr = psnr_of(input.value(), decode_srm(equal_file).value().mesh);
+    std::printf("| %s | srcodec decode at Draco qp %d's PSNR (%.2f dB) | %zu B | %.1f ms | %.2f M tri/s |\n",
+                path.c_str(), qp, equal_psnr, equal.size(), equal_ms, equal_tris / equal_ms / 1e3);
   }
   std::fflush(stdout);
   return 0;
