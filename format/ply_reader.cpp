@@ -161,13 +161,14 @@ Status read_ply(const std::string& bytes, PolygonMesh* mesh) {
         }
         double count = 0;
         SRCODEC_RETURN_IF_ERROR(in.read(prop.count_type, &count));
-        if (count < 0 || count > static_cast<double>(in.remaining_bytes()))
+        if (!(count >= 0 && count <= static_cast<double>(in.remaining_bytes())))  // NaN too
           return parse_error("element '" + e.name + "' item " + std::to_string(i) + " has an impossible list length");
         list.resize(static_cast<size_t>(count));
         for (auto& x : list) {
           SRCODEC_RETURN_IF_ERROR(in.read(prop.type, &v));
-          x = static_cast<int64_t>(v);
-          if (x > INT32_MAX || x < -1) x = INT32_MAX;  // out of range: validation names it later
+          // Out of range (or NaN, from a float-typed list): validation names
+          // it later. Checked before the conversion, which would be undefined.
+          x = v >= -1 && v <= INT32_MAX ? static_cast<int64_t>(v) : INT32_MAX;
         }
         if (e.name == "tristrips") add_strip(list, mesh);
         else if (e.name == "face" && !list.empty()) {

@@ -134,6 +134,33 @@ TEST(MeshIo, ReadsBinaryStl) {
   EXPECT_NE(bad.status().message().find("says 4 triangles"), std::string::npos) << bad.status().message();
 }
 
+// Found by fuzz/mesh_read_fuzzer: float-typed list counts and indices that
+// no integer holds (converting them was undefined behaviour).
+TEST(MeshIo, PlyFloatListsOutOfRangeAreErrors) {
+  auto ply = [](float count, float index) {
+    std::string out =
+        "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+        "property float z\nelement face 1\nproperty list float float vertex_indices\nend_header\n";
+    const float body[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, count, 0, 1, index};
+    out.append(reinterpret_cast<const char*>(body), sizeof body);
+    return out;
+  };
+  ScratchDir dir;
+  auto good = read_polygon_mesh(dir.write("good.ply", ply(3, 2)));
+  ASSERT_TRUE(good.ok()) << good.status().message();
+  EXPECT_EQ(good->num_faces(), 1u);
+  for (const float index : {2.9274e29f, -5.0f, std::nanf("")}) {
+    auto m = read_polygon_mesh(dir.write("index.ply", ply(3, index)));
+    ASSERT_FALSE(m.ok()) << index;
+    EXPECT_NE(m.status().message().find("uses vertex index"), std::string::npos) << m.status().message();
+  }
+  for (const float count : {std::nanf(""), 1e30f, -1.0f}) {
+    auto m = read_polygon_mesh(dir.write("count.ply", ply(count, 2)));
+    ASSERT_FALSE(m.ok()) << count;
+    EXPECT_NE(m.status().message().find("impossible list length"), std::string::npos) << m.status().message();
+  }
+}
+
 TEST(MeshIo, ReadsPlyTriangleStrips) {
   ScratchDir dir;
   // A strip over a 2x1 quad row: 0 1 2 3 4 5 gives 4 triangles, then a restart.
