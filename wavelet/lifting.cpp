@@ -214,28 +214,23 @@ std::vector<Vector3d> inverse_lifting(const LiftingPlan& plan, const std::vector
     const auto add_prediction = [&](const LiftingPlan::Odd* from, const LiftingPlan::Odd* to) {
       for (const auto* o = from; o != to; ++o) x[o->v] += predict(*o, taps, x);
     };
-    const bool split = end - begin >= kParallelOdds;
-    const LiftingPlan::Odd* middle = begin + (end - begin) / 2;
-    if (split) {
-      std::future<void> half = std::async(std::launch::async, to_world, middle, end);
-      to_world(begin, middle);
+    // Runs step over [begin, end), the second half on another thread when
+    // the level is big.
+    const auto in_halves = [begin, end](const auto& step) {
+      if (end - begin < kParallelOdds) return step(begin, end);
+      const LiftingPlan::Odd* middle = begin + (end - begin) / 2;
+      std::future<void> half = std::async(std::launch::async, step, middle, end);
+      step(begin, middle);
       half.get();
-    } else {
-      to_world(begin, end);
-    }
+    };
+    in_halves(to_world);
     for (const auto* o = begin; o != end; ++o) {
       const Vector3d d = x[o->v];
       if (d.x() == 0.0 && d.y() == 0.0 && d.z() == 0.0) continue;
       x[o->a] -= o->update_a * d;
       x[o->b] -= o->update_b * d;
     }
-    if (split) {
-      std::future<void> half = std::async(std::launch::async, add_prediction, middle, end);
-      add_prediction(begin, middle);
-      half.get();
-    } else {
-      add_prediction(begin, end);
-    }
+    in_halves(add_prediction);
   }
   return x;
 }
