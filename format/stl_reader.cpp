@@ -1,6 +1,7 @@
 #include "format/stl_reader.h"
 
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -47,6 +48,12 @@ class CornerWelder {
   std::unordered_map<Key, int32_t, Hash> index_;
 };
 
+std::string lower(std::string_view word) {
+  std::string out(word.substr(0, 16));
+  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return out;
+}
+
 uint32_t binary_count(const std::string& bytes) {
   uint32_t count = 0;
   std::memcpy(&count, bytes.data() + 80, sizeof count);  // little-endian, as x86 and ARM Linux
@@ -91,7 +98,7 @@ Status read_ascii(const std::string& bytes, PolygonMesh* mesh) {
     split_words(std::string_view(bytes.data() + pos, end - pos), &words);
     pos = end + 1;
     if (words.empty()) continue;
-    const std::string_view keyword = words[0];
+    const std::string keyword = lower(words[0]);  // some exporters write FACET, VERTEX, ...
     if (keyword == "vertex") {
       if (!in_loop) return line_error(line, "'vertex' outside an 'outer loop'");
       if (words.size() < 4) return line_error(line, "'vertex' needs 3 coordinates");
@@ -111,9 +118,9 @@ Status read_ascii(const std::string& bytes, PolygonMesh* mesh) {
       mesh->add_face(loop.data(), static_cast<int32_t>(loop.size()));
       in_loop = false;
     } else if (keyword == "solid" || keyword == "endsolid" || keyword == "facet" || keyword == "endfacet") {
-      if (in_loop) return line_error(line, "'" + std::string(keyword) + "' before 'endloop'");
+      if (in_loop) return line_error(line, "'" + keyword + "' before 'endloop'");
     } else {
-      return line_error(line, "unexpected '" + std::string(keyword.substr(0, 40)) + "' in an ascii STL file");
+      return line_error(line, "unexpected '" + std::string(words[0].substr(0, 40)) + "' in an ascii STL file");
     }
   }
   if (in_loop) return parse_error("the file ends inside a facet (no 'endloop')");
@@ -127,7 +134,7 @@ Status read_stl(const std::string& bytes, PolygonMesh* mesh) {
   std::vector<std::string_view> first;
   split_words(std::string_view(bytes).substr(0, bytes.find('\n')), &first);
   const bool has_nul = bytes.find('\0') != std::string::npos;
-  if (!first.empty() && first[0] == "solid" && (!has_nul || bytes.size() < kBinaryHeader)) {
+  if (!first.empty() && lower(first[0]) == "solid" && (!has_nul || bytes.size() < kBinaryHeader)) {
     return read_ascii(bytes, mesh);
   }
   if (bytes.size() < kBinaryHeader) {

@@ -81,6 +81,12 @@ TEST(MeshIo, ReadsOffAndAsciiStl) {
   ASSERT_TRUE(s.ok()) << s.status().message();
   EXPECT_EQ(s->positions.size(), 4u);  // STL repeats corners; they are welded
   EXPECT_EQ(s->triangles.size(), 4u);
+  // Some exporters write the keywords in capitals.
+  std::string upper = stl;
+  for (char& ch : upper) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+  auto u = read_triangle_mesh(dir.write("u.stl", upper));
+  ASSERT_TRUE(u.ok()) << u.status().message();
+  EXPECT_EQ(u->triangles.size(), 4u);
 }
 
 TEST(MeshIo, ReadsObjStatements) {
