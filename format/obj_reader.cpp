@@ -102,7 +102,7 @@ Status read_obj(const std::string& bytes, PolygonMesh* mesh) {
         const auto count = static_cast<long long>(mesh->positions.size());
         if (index == 0) return line_error(number, "face uses vertex index 0 (OBJ counts from 1)");
         if (index < 0) {
-          if (-index > count) {
+          if (index < -count) {  // (-index would overflow for the most negative value)
             return line_error(number, "face uses relative vertex index " + std::to_string(index) + " but only " +
                                           std::to_string(count) + " vertices come before it");
           }

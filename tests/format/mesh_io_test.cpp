@@ -233,6 +233,8 @@ INSTANTIATE_TEST_SUITE_P(
                       BadInput{"nocorners.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf \nf 1 2 3\n", "line 4: face has 0 corners"},
                       BadInput{"zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", "vertex index 0"},
                       BadInput{"relative.obj", "v 0 0 0\nv 1 0 0\nf -1 -2 -3\nv 0 1 0\n", "line 3"},
+                      BadInput{"minrelative.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -9223372036854775808\n",
+                               "line 4: face uses relative vertex index"},
                       BadInput{"letters.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x/3\n", "'x/3'"},
                       BadInput{"bigindex.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999999999999\n", "line 4"},
                       BadInput{"range2.obj", "v 0 0 0\nv 1 0 0\nf 1 2 3\n#\n", "line 3: face uses vertex index 3"},
