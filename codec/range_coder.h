@@ -108,17 +108,12 @@ class ArithmeticDecoder {
   // A modeled symbol reads at most this many bytes (range >= 2^24 before it,
   // >= 2^8 after the split, since 1 <= p <= 65535).
   static constexpr size_t kMaxBytesPerSymbol = 2;
-  // Real bytes not yet read.
-  size_t bytes_left() const { return size_ - pos_; }
-  // decode() for when at least kMaxBytesPerSymbol real bytes are left
-  // (bytes_left()): the same symbol and state, without the checks for
-  // missing bytes (none can be read, so ok() cannot change).
-  inline int decode_fast(BitModel& model);
-
   // The decoder's state copied into a value that a hot loop keeps in
   // registers (the decoder's own members would be reloaded after every store
-  // through a byte pointer): decode() as decode_fast() while room() allows.
-  // The decoder itself must not be used until store() has written it back.
+  // through a byte pointer). While room() allows, its decode() gives the same
+  // symbol and state as the decoder's, without the checks for missing bytes
+  // (none can be read, so ok() cannot change). The decoder itself must not be
+  // used until store() has written the state back.
   class Cursor {
    public:
     explicit Cursor(const ArithmeticDecoder& d)
@@ -204,23 +199,6 @@ inline int ArithmeticDecoder::decode(BitModel& model) {
   }
   range_coder_detail::update(model, bit);
   normalize();
-  return bit;
-}
-
-inline int ArithmeticDecoder::decode_fast(BitModel& model) {
-  const uint32_t bound = (range_ >> range_coder_detail::kModelBits) * model.p;
-  const int bit = code_ >= bound ? 1 : 0;
-  code_ -= bit ? bound : 0;
-  range_ = bit ? range_ - bound : bound;
-  range_coder_detail::update(model, bit);
-  if (range_ < range_coder_detail::kTopValue) {
-    range_ <<= 8;
-    code_ = (code_ << 8) | data_[pos_++];
-    if (range_ < range_coder_detail::kTopValue) {
-      range_ <<= 8;
-      code_ = (code_ << 8) | data_[pos_++];
-    }
-  }
   return bit;
 }
 
