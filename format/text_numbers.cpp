@@ -5,21 +5,23 @@
 
 namespace srcodec {
 
-bool parse_finite(std::string_view word, double* out) {
-  if (!word.empty() && word[0] == '+') word.remove_prefix(1);
-  if (word.empty() || word[0] == '+') return false;
-  const char* end = word.data() + word.size();
-  const auto [ptr, ec] = std::from_chars(word.data(), end, *out);
-  return ec == std::errc() && ptr == end && std::isfinite(*out);
-}
+namespace {
 
-bool parse_integer(std::string_view word, long long* out) {
+// The whole of `word` is one number of type T, a leading '+' allowed.
+template <typename T>
+bool parse_whole(std::string_view word, T* out) {
   if (!word.empty() && word[0] == '+') word.remove_prefix(1);
   if (word.empty() || word[0] == '+') return false;
   const char* end = word.data() + word.size();
   const auto [ptr, ec] = std::from_chars(word.data(), end, *out);
   return ec == std::errc() && ptr == end;
 }
+
+}  // namespace
+
+bool parse_finite(std::string_view word, double* out) { return parse_whole(word, out) && std::isfinite(*out); }
+
+bool parse_integer(std::string_view word, long long* out) { return parse_whole(word, out); }
 
 void split_words(std::string_view line, std::vector<std::string_view>* words) {
   words->clear();

@@ -161,8 +161,9 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
   if (rep.oversample_steps > 0)
     progress("oversampled (up to " + std::to_string(rep.oversample_steps) + " steps per component): " +
              std::to_string(rep.oversampled_vertices) + " vertices, " + std::to_string(rep.seconds_oversample) + " s");
-  if (options.uniform && static_cast<double>(rep.oversampled_vertices) < kMinUniformRatio * finest && fit &&
-      options.levels > 0) {
+  const bool too_few_for_levels = options.uniform && options.levels > 0 &&
+                                  static_cast<double>(rep.oversampled_vertices) < kMinUniformRatio * finest;
+  if (too_few_for_levels && fit) {
     RemeshOptions fewer = options;
     fewer.levels = options.levels - 1;
     progress(std::to_string(options.levels) + " levels need about " +
@@ -171,7 +172,7 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
              ": trying " + std::to_string(fewer.levels));
     return remesh(mesh, fewer, report);
   }
-  if (options.uniform && options.levels > 0 && static_cast<double>(rep.oversampled_vertices) < kMinUniformRatio * finest)
+  if (too_few_for_levels)
     return invalid_argument(
         "remesh: " + std::to_string(options.levels) + " uniform levels over " + std::to_string(base_total) +
         " base vertices make about " + std::to_string(static_cast<size_t>(finest)) + " vertices, but the input has " +
