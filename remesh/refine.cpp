@@ -131,10 +131,11 @@ class Refiner {
       const auto start = std::chrono::steady_clock::now();
       RefineLevelReport lr;
       lr.level = level + 1;
-      const std::vector<int32_t> selected = select(level, cell_of);
+      const std::vector<int32_t> selected = select(level, cell_of, lr);
       lr.selected = selected.size();
       if (selected.empty()) {
-        progress("level " + std::to_string(level + 1) + ": no triangle passes the threshold; refinement stops");
+        progress("level " + std::to_string(level + 1) + ": no triangle passes the threshold" +
+                 std::string(options_.tolerance > 0.0 ? " and the tolerance" : "") + "; refinement stops");
         break;
       }
       const size_t nodes_before = h_.nodes().size();
@@ -613,17 +614,112 @@ class Refiner {
 
   // Eqs. 4-5: f(s) = vertices in the cell of s, g(t) = min over t's corners;
   // the leaves of `level` with g(t) > threshold (all of them when uniform).
-  std::vector<int32_t> select(int32_t level, const std::vector<int32_t>& cell_of) const {
+  // With a tolerance, of those only the ones whose input deviates from the
+  // level's mesh by more than it (leaf_deviation; the others are counted in
+  // lr.within_tolerance).
+  std::vector<int32_t> select(int32_t level, const std::vector<int32_t>& cell_of, RefineLevelReport& lr) const {
     std::vector<int32_t> f(static_cast<size_t>(h_.vertex_count()), 0);
     for (int32_t s : cell_of)
       if (s >= 0) ++f[s];
+    const std::vector<double> deviation =
+        options_.tolerance > 0.0 ? leaf_deviation(level, cell_of) : std::vector<double>{};
     std::vector<int32_t> out;
     const auto& nodes = h_.nodes();
     for (size_t n = 0; n < nodes.size(); ++n) {
       const TriangleHierarchy::Node& node = nodes[n];
       if (node.level != level || node.first_child >= 0) continue;
       const int32_t g = std::min({f[node.v[0]], f[node.v[1]], f[node.v[2]]});
-      if (options_.uniform || g > options_.threshold) out.push_back(static_cast<int32_t>(n));
+      if (!options_.uniform && !(g > options_.threshold)) continue;
+      if (!deviation.empty() && deviation[n] <= options_.tolerance) {
+        ++lr.within_tolerance;
+        continue;
+      }
+      out.push_back(static_cast<int32_t>(n));
+    }
+    return out;
+  }
+
+  // The geometric criterion (ours; the paper's Eq. 5 only counts vertices,
+  // which on an evenly sampled scan selects nearly everything or an arbitrary
+  // part): per leaf of `level`, the RMS distance of the input vertices it
+  // covers to its plane. An input vertex belongs to the triangle nearest it
+  // among those around its cell's site; the distance is taken to the plane,
+  // not to the triangle, because a Voronoi cell may reach past its site's
+  // triangles (stretched coarse levels), where the distance to the triangle
+  // would count the offset along the surface. The RMS is pooled over the leaf
+  // and its three siblings, so that whole quads stay unsplit together: a lone
+  // unsplit triangle among split ones would be split by the closure anyway.
+  // 0 for a leaf that covers no input vertex (its neighbours cover its part
+  // of the input), infinite (split) for one that is not a triangle of the
+  // level's mesh (split by the closure).
+  std::vector<double> leaf_deviation(int32_t level, const std::vector<int32_t>& cell_of) const {
+    const size_t inputs = std::min(cell_of.size(), input_.positions.size());
+    std::vector<int32_t> nearest(inputs, -1);
+    std::vector<double> squared(inputs, 0.0);
+    auto corner = [&](int32_t t, int c) -> const Eigen::Vector3d& { return points_[anchor_[triangles_[t][c]]]; };
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, inputs, 4096), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t i = r.begin(); i != r.end(); ++i) {
+        const int32_t s = cell_of[i];
+        if (s < 0) continue;
+        double best = std::numeric_limits<double>::infinity();
+        for (const int32_t* t = around_.begin(s); t != around_.end(s); ++t) {
+          const double d =
+              (closest_on_triangle(points_[i], corner(*t, 0), corner(*t, 1), corner(*t, 2)) - points_[i]).squaredNorm();
+          if (d < best) {
+            best = d;
+            nearest[i] = *t;
+          }
+        }
+        if (nearest[i] < 0) continue;
+        const Eigen::Vector3d normal =
+            (corner(nearest[i], 1) - corner(nearest[i], 0)).cross(corner(nearest[i], 2) - corner(nearest[i], 0));
+        const double length = normal.norm();
+        squared[i] = length > 0.0 ? std::pow(normal.dot(points_[i] - corner(nearest[i], 0)) / length, 2) : best;
+      }
+    });
+    std::vector<double> sum(triangles_.size(), 0.0);
+    std::vector<int64_t> count(triangles_.size(), 0);
+    for (size_t i = 0; i < inputs; ++i)
+      if (nearest[i] >= 0) {
+        sum[nearest[i]] += squared[i];
+        ++count[nearest[i]];
+      }
+    const auto& nodes = h_.nodes();
+    auto triangle_of = [&](int32_t n) -> int32_t {
+      const auto& v = nodes[n].v;
+      for (const int32_t* t = around_.begin(v[0]); t != around_.end(v[0]); ++t) {
+        const auto& tri = triangles_[*t];
+        if (std::find(tri.begin(), tri.end(), v[1]) != tri.end() && std::find(tri.begin(), tri.end(), v[2]) != tri.end())
+          return *t;
+      }
+      return -1;
+    };
+    std::vector<double> out(nodes.size(), std::numeric_limits<double>::infinity());
+    for (size_t n = 0; n < nodes.size(); ++n) {
+      const TriangleHierarchy::Node& node = nodes[n];
+      if (node.level != level || node.first_child >= 0) continue;
+      const int32_t own = triangle_of(static_cast<int32_t>(n));
+      if (own < 0) continue;
+      double pooled = sum[own];
+      int64_t points = count[own];
+      if (node.parent >= 0) {
+        double siblings = 0.0;
+        int64_t sibling_points = 0;
+        bool whole = true;
+        for (int c = 0; c < 4 && whole; ++c) {
+          const int32_t t = triangle_of(nodes[node.parent].first_child + c);
+          whole = t >= 0;
+          if (whole) {
+            siblings += sum[t];
+            sibling_points += count[t];
+          }
+        }
+        if (whole) {
+          pooled = siblings;
+          points = sibling_points;
+        }
+      }
+      out[n] = points > 0 ? std::sqrt(pooled / static_cast<double>(points)) : 0.0;
     }
     return out;
   }

@@ -162,6 +162,34 @@ TEST(Remesher, DeterministicOutput) {
   EXPECT_EQ(ma.positions, mb.positions);
 }
 
+// The geometric criterion: a square, flat on its left half and rippled on its
+// right half, refines only where the ripples are; the result is still
+// semi-regular and the rippled half is as fine as with uniform refinement.
+TEST(Remesher, ToleranceRefinesOnlyWhereTheSurfaceIsDetailed) {
+  TriangleMesh square = test::flat_square(90);
+  for (Eigen::Vector3d& p : square.positions)
+    if (p.x() > 0.5) p.z() = 0.05 * std::sin(20.0 * p.x()) * std::sin(20.0 * p.y()) * (p.x() - 0.5);
+  const RemeshOptions uniform = small_options(3, 30, true);
+  RemeshOptions adaptive = uniform;
+  adaptive.tolerance_db = 70.0;
+  auto u = remesh(square, uniform);
+  auto a = remesh(square, adaptive);
+  ASSERT_TRUE(u.ok()) << u.status().message();
+  ASSERT_TRUE(a.ok()) << a.status().message();
+  expect_semi_regular(a.value());
+  auto count = [](const TriangleMesh& m, double lo, double hi) {
+    return std::count_if(m.positions.begin(), m.positions.end(),
+                         [&](const Eigen::Vector3d& p) { return p.x() >= lo && p.x() <= hi; });
+  };
+  const TriangleMesh fine_u = u->level_mesh(3), fine_a = a->level_mesh(3);
+  // Away from the middle (base triangles there span both halves), the flat
+  // half keeps few vertices and the rippled half nearly all of them.
+  EXPECT_LT(count(fine_a, 0.0, 0.25), count(fine_u, 0.0, 0.25) / 4);
+  EXPECT_GT(count(fine_a, 0.75, 1.0), count(fine_u, 0.75, 1.0) * 9 / 10);
+  EXPECT_LT(fine_a.triangles.size(), fine_u.triangles.size() * 7 / 10);
+  EXPECT_EQ(folded_triangles(square, fine_a), 0u) << "uniform: " << folded_triangles(square, fine_u);
+}
+
 TEST(Remesher, TooManyBaseVerticesSaysWhatWouldWork) {
   const TriangleMesh tet = test::tetrahedron();
   auto srm = remesh(tet, small_options(1, 100, true));

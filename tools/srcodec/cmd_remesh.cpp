@@ -66,6 +66,7 @@ Status run_remesh(const RemeshCliOptions& o) {
       if (level > 0) {
         const RefineLevelReport& lr = report.levels[level - 1];
         j.field("selected", lr.selected)
+            .field("within_tolerance", lr.within_tolerance)
             .field("split", lr.split)
             .field("lloyd_iterations", lr.lloyd_iterations)
             .field("moves", lr.moves)
@@ -98,6 +99,7 @@ Status run_remesh(const RemeshCliOptions& o) {
         .field("promoted_vertices", report.promoted_vertices)
         .field("uniform", options.uniform)
         .field("threshold", options.threshold)
+        .field("tolerance_db", options.tolerance_db)
         .field("seconds", seconds)
         .array("levels", level_json);
     std::cout << j.str() << "\n";

@@ -17,6 +17,10 @@ void add_remesh_flags(CLI::App* cmd, RemeshFlags& f) {
                                     "than this many (oversampled) input vertices (Eq. 5)");
   threshold->check(CLI::NonNegativeNumber);
   cmd->add_flag("--uniform", f.uniform, "Split every triangle (the default without --threshold)")->excludes(threshold);
+  cmd->add_option("--tolerance", f.tolerance_db,
+                  "Adaptive by geometry: leave a triangle unsplit where the input's RMS distance to it is within "
+                  "this PSNR in dB (bounding-box diagonal x 10^(-dB/20)); with --uniform or --threshold")
+      ->check(CLI::Range(1.0, 300.0));
   cmd->add_option("--oversample", f.oversample, "Subdivision steps before remeshing: auto, 0, 1, 2 or 3")
       ->capture_default_str();
   cmd->add_option("--scheme", f.scheme, "Oversampling scheme: butterfly or loop")->capture_default_str();
@@ -34,6 +38,7 @@ StatusOr<RemeshOptions> to_remesh_options(const RemeshFlags& o) {
   // own site's vertex, so epsilon 0 would split everything anyway.
   r.uniform = o.uniform || o.threshold < 0.0;
   r.threshold = std::max(o.threshold, 0.0);
+  r.tolerance_db = o.tolerance_db;
   if (o.oversample == "auto") {
     r.oversample = -1;
   } else if (o.oversample.size() == 1 && o.oversample[0] >= '0' && o.oversample[0] <= '3') {

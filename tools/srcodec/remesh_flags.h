@@ -16,12 +16,13 @@ struct RemeshFlags {
   size_t base_vertices = 0;
   double threshold = -1.0;
   bool uniform = false;
+  double tolerance_db = 0.0;
   // Set by add_remesh_flags: without --levels, `levels` is fitted to small
   // inputs (RemeshOptions::fit_levels).
   const CLI::Option* levels_option = nullptr;
 };
 
-// Adds --levels, --base-vertices, --threshold, --uniform, --oversample, --scheme.
+// Adds --levels, --base-vertices, --threshold, --uniform, --tolerance, --oversample, --scheme.
 void add_remesh_flags(CLI::App* cmd, RemeshFlags& flags);
 StatusOr<RemeshOptions> to_remesh_options(const RemeshFlags& flags);
 
