@@ -502,31 +502,38 @@ class Refiner {
     // Last resort for the few folds no input vertex undoes (a site squeezed
     // between neighbours that are themselves stuck): the site leaves the
     // input and goes to the mean of its neighbours, when that is better.
-    std::vector<std::array<int32_t, 3>> still_folded;
-    for (const auto& tri : triangles_)
-      if (folded(tri, -1, -1)) still_folded.push_back(tri);
-    for (const auto& level_tris : coarse_triangles_)
-      for (const auto& tri : level_tris)
+    // Repeated while it helps: a site moved off the input can free its
+    // neighbours for the next pass.
+    for (int pass = 0; pass < kPasses; ++pass) {
+      std::vector<std::array<int32_t, 3>> still_folded;
+      for (const auto& tri : triangles_)
         if (folded(tri, -1, -1)) still_folded.push_back(tri);
-    for (const auto& tri : still_folded) {
-      if (!folded(tri, -1, -1)) continue;
-      for (int32_t s : tri) {
-        if (neighbors_.begin(s) == neighbors_.end(s)) continue;
-        Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-        for (const int32_t* n = neighbors_.begin(s); n != neighbors_.end(s); ++n) mean += points_[anchor_[*n]];
-        mean /= static_cast<double>(neighbors_.end(s) - neighbors_.begin(s));
-        const int32_t from = anchor_[s];
-        const int32_t i = add_point(mean, param_[from], normals_[from], site_on_boundary_[s]);
-        const std::pair<int, double> before = star_quality(s, from), after = star_quality(s, i);
-        if (after.first < before.first || (after.first == before.first && after.second > before.second + 1e-12)) {
-          site_of_[from] = -1;
-          anchor_[s] = i;
-          site_of_[i] = s;
-          ++lr.off_input_moves;
-          break;
+      for (const auto& level_tris : coarse_triangles_)
+        for (const auto& tri : level_tris)
+          if (folded(tri, -1, -1)) still_folded.push_back(tri);
+      size_t moved = 0;
+      for (const auto& tri : still_folded) {
+        if (!folded(tri, -1, -1)) continue;
+        for (int32_t s : tri) {
+          if (neighbors_.begin(s) == neighbors_.end(s)) continue;
+          Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+          for (const int32_t* n = neighbors_.begin(s); n != neighbors_.end(s); ++n) mean += points_[anchor_[*n]];
+          mean /= static_cast<double>(neighbors_.end(s) - neighbors_.begin(s));
+          const int32_t from = anchor_[s];
+          const int32_t i = add_point(mean, param_[from], normals_[from], site_on_boundary_[s]);
+          const std::pair<int, double> before = star_quality(s, from), after = star_quality(s, i);
+          if (after.first < before.first || (after.first == before.first && after.second > before.second + 1e-12)) {
+            site_of_[from] = -1;
+            anchor_[s] = i;
+            site_of_[i] = s;
+            ++lr.off_input_moves;
+            ++moved;
+            break;
+          }
+          drop_last_point();
         }
-        drop_last_point();
       }
+      if (moved == 0) break;
     }
   }
 
