@@ -239,6 +239,9 @@ struct DecoderIo {
 // code_node's group, written out on a register-held decoder (Cursor) while a
 // whole group's bytes are there (none of its symbols can then depend on
 // missing bytes), and code_node itself, with its checks, near the end.
+// kLeaves: no node of the level has children (the finest level, most of the
+// nodes), so no group has a D symbol: a shorter loop that keeps more in registers.
+template <bool kLeaves>
 bool decode_level(CoderState& state, int p, int level, ArithmeticDecoder& dec, size_t* symbols) {
   constexpr size_t kGroupSymbols = 3;
   const int32_t* const parent = state.forest.parent.data();
@@ -307,7 +310,7 @@ bool decode_level(CoderState& state, int p, int level, ArithmeticDecoder& dec, s
         magnitude[n] = plane_bit;
       }
     }
-    if ((f & (kDescendants | kHasChildren)) == kHasChildren) {
+    if (!kLeaves && (f & (kDescendants | kHasChildren)) == kHasChildren) {
       const int own = sp >= 0 ? 2 + std::min(sp - p - 1, 1) : significant;
       ++count;
       if (rc.decode(m.desc[own * 2 + unseen])) {
@@ -468,7 +471,9 @@ StatusOr<std::vector<double>> decode_bitplanes(const CoefficientForest& forest, 
       if (present) {
         ArithmeticDecoder dec(segments[next].data, segments[next].size);
         ++next;
-        stopped = !decode_level(state, p, l, dec, &st.symbols);
+        const bool leaves = index.child_begin[index.level_begin[l]] == index.child_begin[index.level_begin[l + 1]];
+        stopped = leaves ? !decode_level<true>(state, p, l, dec, &st.symbols)
+                         : !decode_level<false>(state, p, l, dec, &st.symbols);
       } else {
         stopped = true;
       }

@@ -60,10 +60,13 @@ constexpr ShiftTable kShiftTable = [] {
   return t;
 }();
 
+// `bit` is 0 or 1. Written with a mask rather than `?:`, which compilers may
+// turn into a branch on the bit (see ArithmeticDecoder::Cursor::decode).
 inline void update(BitModel& m, int bit) {
   const int s = kShiftTable.shift[m.seen];
   const uint32_t p = m.p;
-  m.p = static_cast<uint16_t>(bit ? p - (p >> s) : p + ((kModelOne - p) >> s));
+  const uint32_t one = 0u - static_cast<uint32_t>(bit);  // all ones when the bit is 1
+  m.p = static_cast<uint16_t>(p + (((kModelOne - p) >> s) & ~one) - ((p >> s) & one));
   m.seen = static_cast<uint8_t>(m.seen + (m.seen < kSeenLimit ? 1 : 0));
 }
 
@@ -128,11 +131,16 @@ class ArithmeticDecoder {
       d.pos_ = static_cast<size_t>(next_ - base_);
     }
     int decode(BitModel& model) {
+      // Without branches on the bit (masks, not `?:`, which GCC compiled to a
+      // branch): the bits of the data are not predictable (refinement bits
+      // are about even), and a mispredicted branch costs more than the
+      // arithmetic of both sides.
       const uint32_t bound = (range_ >> range_coder_detail::kModelBits) * model.p;
-      const int bit = code_ >= bound ? 1 : 0;
-      code_ -= bit ? bound : 0;
-      range_ = bit ? range_ - bound : bound;
-      range_coder_detail::update(model, bit);
+      const uint32_t bit = code_ >= bound ? 1u : 0u;
+      const uint32_t one = 0u - bit;  // all ones when the bit is 1
+      code_ -= bound & one;
+      range_ = ((range_ - bound) & one) | (bound & ~one);
+      range_coder_detail::update(model, static_cast<int>(bit));
       // Normalize without branches: range >= 2^8 here, so 0, 1 or 2 bytes
       // (whole bytes of leading zeros beyond the top 8 bits) come in; room()
       // vouched for the 2 bytes read.
@@ -141,7 +149,7 @@ class ArithmeticDecoder {
       code_ = (code_ << (8 * bytes)) | (two >> (16 - 8 * bytes));
       range_ <<= 8 * bytes;
       next_ += bytes;
-      return bit;
+      return static_cast<int>(bit);
     }
 
    private:

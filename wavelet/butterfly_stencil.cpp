@@ -24,6 +24,15 @@ namespace {
 using Tap = LiftingPlan::Tap;
 constexpr double kPi = 3.14159265358979323846;
 
+// Appends a tap, writing its two fields (not a 16-byte temporary built on the
+// stack and copied: two narrow stores read back as one wide load cannot be
+// forwarded, which stalled every push_back of the plan build).
+void add(std::vector<Tap>* out, int32_t vertex, double weight) {
+  Tap& t = out->emplace_back();
+  t.vertex = vertex;
+  t.weight = weight;
+}
+
 // Steps bounded by the vertex's valence: a walk that does not end in a
 // manifold fan gives up instead of looping.
 int32_t walk_limit(const LevelMesh& mesh, int32_t v) { return mesh.valence(v) + 2; }
@@ -56,14 +65,14 @@ void four_point(const LevelMesh& mesh, int32_t p, int32_t q, std::vector<Tap>* o
   const int32_t before = boundary_neighbour_before(mesh, p, q);
   const int32_t after = boundary_neighbour_after(mesh, p, q);
   if (before < 0 || after < 0) {  // not a manifold boundary: linear
-    out->push_back({p, 0.5});
-    out->push_back({q, 0.5});
+    add(out, p, 0.5);
+    add(out, q, 0.5);
     return;
   }
-  out->push_back({p, 9.0 / 16});
-  out->push_back({q, 9.0 / 16});
-  out->push_back({before, -1.0 / 16});
-  out->push_back({after, -1.0 / 16});
+  add(out, p, 9.0 / 16);
+  add(out, q, 9.0 / 16);
+  add(out, before, -1.0 / 16);
+  add(out, after, -1.0 / 16);
 }
 
 // Wing of the 8-point stencil across edge (u, v) of a triangle (u, v, w)
@@ -73,20 +82,20 @@ void wing(const LevelMesh& mesh, int32_t u, int32_t v, int32_t w, std::vector<Ta
   constexpr double kWing = -1.0 / 16;
   const int32_t across = mesh.third(v, u);
   if (across >= 0) {
-    out->push_back({across, kWing});
+    add(out, across, kWing);
     return;
   }
-  out->push_back({u, kWing});
-  out->push_back({v, kWing});
-  out->push_back({w, -kWing});
+  add(out, u, kWing);
+  add(out, v, kWing);
+  add(out, w, -kWing);
 }
 
 // Triangles (a, b, x) and (b, a, y).
 void eight_point(const LevelMesh& mesh, int32_t a, int32_t b, int32_t x, int32_t y, std::vector<Tap>* out) {
-  out->push_back({a, 0.5});
-  out->push_back({b, 0.5});
-  out->push_back({x, 1.0 / 8});
-  out->push_back({y, 1.0 / 8});
+  add(out, a, 0.5);
+  add(out, b, 0.5);
+  add(out, x, 1.0 / 8);
+  add(out, y, 1.0 / 8);
   wing(mesh, b, x, a, out);
   wing(mesh, x, a, b, out);
   wing(mesh, a, y, b, out);
@@ -114,17 +123,17 @@ void extraordinary(const LevelMesh& mesh, int32_t e, int32_t o, double scale, st
   if (!closed) ring.clear();  // not a closed fan after all
   const int32_t k = static_cast<int32_t>(ring.size());
   if (k < 3) {  // no Butterfly rule for such a fan: linear
-    out->push_back({e, 0.5 * scale});
-    out->push_back({o, 0.5 * scale});
+    add(out, e, 0.5 * scale);
+    add(out, o, 0.5 * scale);
     return;
   }
   double sum = 0.0;
   for (int32_t i = 0; i < k; ++i) {
     const double w = extraordinary_weight(k, i);
     sum += w;
-    out->push_back({ring[i], w * scale});
+    add(out, ring[i], w * scale);
   }
-  out->push_back({e, (1.0 - sum) * scale});  // 3/4, as OpenMesh computes it
+  add(out, e, (1.0 - sum) * scale);  // 3/4, as OpenMesh computes it
 }
 
 void interior_taps(const LevelMesh& mesh, int32_t a, int32_t b, int32_t x, int32_t y, std::vector<Tap>* out) {
@@ -140,21 +149,59 @@ void interior_taps(const LevelMesh& mesh, int32_t a, int32_t b, int32_t x, int32
   if (irregular_b) extraordinary(mesh, b, a, scale, out);
 }
 
-// Sorts by vertex (insertion sort: a stencil has at most a few dozen taps),
-// sums the weights of repeated vertices, drops zeros.
-void merge(std::vector<Tap>* taps, size_t from) {
-  std::vector<Tap>& t = *taps;
-  for (size_t i = from + 1; i < t.size(); ++i) {
-    const Tap key = t[i];
-    size_t k = i;
-    for (; k > from && t[k - 1].vertex > key.vertex; --k) t[k] = t[k - 1];
-    t[k] = key;
+// A scratch array of n values on the stack, or on the heap when n exceeds
+// what a stencil normally has.
+template <typename T>
+class StackFirst {
+ public:
+  explicit StackFirst(size_t n) : data_(local_) {
+    if (n > kLocal) {
+      heap_.resize(n);
+      data_ = heap_.data();
+    }
   }
+  StackFirst(const StackFirst&) = delete;
+  StackFirst& operator=(const StackFirst&) = delete;
+  T& operator[](size_t i) { return data_[i]; }
+
+ private:
+  static constexpr size_t kLocal = 64;
+  T local_[kLocal];
+  std::vector<T> heap_;
+  T* data_;
+};
+
+// Sorts by vertex, stably (the weights of a repeated vertex are summed in the
+// order they were appended), sums the weights of repeated vertices, drops
+// zeros. The sort is an insertion sort (a stencil has a few dozen taps at
+// most) of 64-bit keys, the vertex (sign bit flipped: signed order) above the
+// tap's position, so that equal vertices keep their order and each move is
+// one register-sized copy.
+void merge(std::vector<Tap>* taps, size_t from) {
+  constexpr uint32_t kSign = 0x80000000u;
+  std::vector<Tap>& t = *taps;
+  const size_t count = t.size() - from;
+  StackFirst<uint64_t> keys(count);
+  for (size_t i = 0; i < count; ++i) {
+    const uint64_t key = (static_cast<uint64_t>(static_cast<uint32_t>(t[from + i].vertex) ^ kSign) << 32) | i;
+    size_t k = i;
+    for (; k > 0 && keys[k - 1] > key; --k) keys[k] = keys[k - 1];
+    keys[k] = key;
+  }
+  // Weights by position, then the merged taps written over the range.
+  StackFirst<double> weights(count);
+  for (size_t i = 0; i < count; ++i) weights[i] = t[from + i].weight;
   size_t write = from;
-  for (size_t i = from; i < t.size();) {
-    Tap sum = t[i];
-    for (++i; i < t.size() && t[i].vertex == sum.vertex; ++i) sum.weight += t[i].weight;
-    if (sum.weight != 0.0) t[write++] = sum;
+  for (size_t i = 0; i < count;) {
+    const uint32_t vertex = static_cast<uint32_t>(keys[i] >> 32);
+    double sum = weights[static_cast<uint32_t>(keys[i])];
+    for (++i; i < count && static_cast<uint32_t>(keys[i] >> 32) == vertex; ++i)
+      sum += weights[static_cast<uint32_t>(keys[i])];
+    if (sum != 0.0) {
+      t[write].vertex = static_cast<int32_t>(vertex ^ kSign);
+      t[write].weight = sum;
+      ++write;
+    }
   }
   t.resize(write);
 }

@@ -135,7 +135,10 @@ StatusOr<LiftingPlan> LiftingPlan::build(const TriangleHierarchy& hierarchy, int
     SRCODEC_ASSIGN_OR_RETURN(const LevelMesh mesh,
                              LevelMesh::build(hierarchy.level_triangles(j - 1), plan.vertex_count_));
     for (uint32_t k = first; k < last; ++k) {
-      Odd o;
+      // Filled in place (the reserved array does not move): an Odd built on
+      // the stack field by field and then copied is read back with wide loads
+      // from narrow stores, which the CPU cannot forward.
+      Odd& o = plan.odds_.emplace_back();
       o.v = odd[k];
       const auto edge = hierarchy.parent_edge(o.v);
       o.a = edge[0];
@@ -153,7 +156,6 @@ StatusOr<LiftingPlan> LiftingPlan::build(const TriangleHierarchy& hierarchy, int
       o.taps_begin = static_cast<uint32_t>(plan.taps_.size());
       butterfly_taps(mesh, o.a, o.b, o.left, o.right, &plan.taps_);
       o.taps_end = static_cast<uint32_t>(plan.taps_.size());
-      plan.odds_.push_back(o);
     }
   }
   return plan;
