@@ -2,11 +2,13 @@
 """Remeshing quality and speed benchmark (issue: adaptive Voronoi remeshing).
 
 For each smooth scan: uniform remeshing to 4 and 5 levels with the default
-options, then adaptive remeshing (5 levels) at several thresholds; the
+options, then adaptive remeshing (5 levels) at several Eq. 5 thresholds and
+geometric tolerances (--tolerance, a few dB above uniform L5's PSNR); the
 finest level's PSNR against the input, its triangle count, wall time and peak
 memory (from /usr/bin/time). Prints a Markdown table.
 
 usage: /usr/bin/python3 tools/bench/remesh_quality.py [MESH ...] > docs/remesh_quality.md
+       THRESHOLDS= TOLERANCE_OFFSETS=-2,-1 NO_HEADER=1 .../remesh_quality.py igea.ply   (rows only, a sweep)
 """
 import json
 import os
@@ -19,8 +21,16 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 SRCODEC = os.environ.get("SRCODEC", os.path.join(ROOT, "build", "tools", "srcodec"))
 CORPUS = os.path.join(ROOT, "..", "shared", "data", "meshes")
 MESHES = ["stanford-bunny.obj", "armadillo.obj", "nefertiti.obj", "igea.ply"]
-THRESHOLDS = [4, 8, 16]
-TOLERANCE_OFFSETS = [1, 3, 5]
+
+def int_list(name, default):
+    """A comma-separated list of integers from the environment (may be empty), else `default`."""
+    value = os.environ.get(name)
+    return default if value is None else [int(x) for x in value.split(",") if x.strip()]
+
+
+# Environment overrides for sweeps: THRESHOLDS=4,8 TOLERANCE_OFFSETS=-2,-1 (empty skips those rows).
+THRESHOLDS = int_list("THRESHOLDS", [4, 8, 16])
+TOLERANCE_OFFSETS = int_list("TOLERANCE_OFFSETS", [1, 3, 5])
 
 
 def run(mesh, extra):
@@ -66,7 +76,7 @@ def table(meshes):
         runs += [(f"adaptive L5 eps={t}", ["--levels", "5", "--threshold", str(t)]) for t in THRESHOLDS]
         # The geometric criterion at tolerances a few dB above uniform L5's
         # PSNR (known only once that row has run).
-        runs += [(f"geometric L5 uniform+{k}", k) for k in TOLERANCE_OFFSETS]
+        runs += [(f"geometric L5 uniform{k:+d}", k) for k in TOLERANCE_OFFSETS]
         for name, extra in runs:
             if isinstance(extra, int):
                 if uniform5 is None:
