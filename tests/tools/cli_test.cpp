@@ -128,6 +128,19 @@ TEST(Cli, RemeshBadRequestsSayWhatWouldWork) {
   EXPECT_NE(scheme.exit_code, 0);
   auto both = run_srcodec("remesh --quiet --uniform --threshold 3 " + in + " -o " + q(out));
   EXPECT_NE(both.exit_code, 0);
+  for (const char* tolerance : {"0", "-5", "nan", "400", "x"}) {
+    auto bad = run_srcodec("remesh --quiet --tolerance " + std::string(tolerance) + " " + in + " -o " + q(out));
+    EXPECT_NE(bad.exit_code, 0) << "--tolerance " << tolerance;
+    EXPECT_NE(bad.err.find("--tolerance"), std::string::npos) << bad.err;
+  }
+  // NaN and infinities get past comparisons; every real-valued option refuses them.
+  for (const std::string option : {"remesh --threshold", "encode --bpv", "encode --psnr", "encode --tangential-factor"})
+    for (const char* value : {"nan", "inf", "-inf"}) {
+      auto bad = run_srcodec(option + " " + value + " --quiet " + in + " -o " + q(dir.file("x.srm")));
+      EXPECT_NE(bad.exit_code, 0) << option << " " << value;
+      EXPECT_NE(bad.err.find("finite"), std::string::npos) << option << " " << value << ": " << bad.err;
+    }
+  EXPECT_FALSE(read_file_bytes(dir.file("x.srm")).ok());
   auto folder = run_srcodec("remesh --quiet " + in + " -o " + q(dir.file("no/such/folder/x.obj")));
   EXPECT_EQ(folder.exit_code, 1);
   EXPECT_NE(folder.err.find("does not exist"), std::string::npos) << folder.err;

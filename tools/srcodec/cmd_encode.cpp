@@ -127,14 +127,18 @@ Command add_encode_command(CLI::App& app) {
   cmd->add_option("mesh", o->input, "Input mesh (OBJ, PLY, OFF, STL)")->required();
   cmd->add_option("-o,--output", o->output, "The .srm file to write")->required();
   add_remesh_flags(cmd, o->remesh);
-  auto* bpv = cmd->add_option("--bpv", o->bpv, "Rate: bits per input vertex")->check(CLI::PositiveNumber);
+  auto* bpv = cmd->add_option("--bpv", o->bpv, "Rate: bits per input vertex")
+                  ->check(kFiniteNumber)
+                  ->check(CLI::PositiveNumber);
   auto* bytes = cmd->add_option("--bytes", o->bytes, "Rate: file size in bytes")->check(CLI::PositiveNumber);
   auto* psnr = cmd->add_option("--psnr", o->psnr, "Rate: the smallest file reaching this PSNR (dB) against the input")
+                   ->check(kFiniteNumber)
                    ->check(CLI::PositiveNumber);
   bpv->excludes(bytes)->excludes(psnr);
   bytes->excludes(psnr);
   cmd->add_option("--tangential-factor", o->tangential_factor,
                   "Quantizer step of tangential detail components relative to normal ones")
+      ->check(kFiniteNumber)
       ->check(CLI::Range(0.25, 64.0))
       ->capture_default_str();
   cmd->add_option("--base-bits", o->base_bits, "Bits per coordinate of the base mesh grid")

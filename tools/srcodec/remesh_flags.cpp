@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "tools/srcodec/commands.h"
+
 namespace srcodec {
 
 void add_remesh_flags(CLI::App* cmd, RemeshFlags& f) {
@@ -15,11 +17,12 @@ void add_remesh_flags(CLI::App* cmd, RemeshFlags& f) {
   auto* threshold = cmd->add_option("--threshold", f.threshold,
                                     "Adaptive: split a triangle only when each corner's Voronoi cell holds more "
                                     "than this many (oversampled) input vertices (Eq. 5)");
-  threshold->check(CLI::NonNegativeNumber);
+  threshold->check(kFiniteNumber)->check(CLI::NonNegativeNumber);
   cmd->add_flag("--uniform", f.uniform, "Split every triangle (the default without --threshold)")->excludes(threshold);
   cmd->add_option("--tolerance", f.tolerance_db,
                   "Adaptive by geometry: leave a triangle unsplit where the input's RMS distance to it is within "
                   "this PSNR in dB (bounding-box diagonal x 10^(-dB/20)); with --uniform or --threshold")
+      ->check(kFiniteNumber)
       ->check(CLI::Range(1.0, 300.0));
   cmd->add_option("--oversample", f.oversample, "Subdivision steps before remeshing: auto, 0, 1, 2 or 3")
       ->capture_default_str();
