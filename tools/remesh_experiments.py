@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """The paper's remeshing experiments (Kammoun, Payan, Antonini, Figs. 6-9) on
 our corpus: remeshing error against triangle count per level, for uniform
-refinement, adaptive refinement at several thresholds, and Butterfly against
-Loop oversampling. Writes a CSV and a plot.
+refinement, adaptive refinement at several thresholds (and, ours, at geometric
+tolerances), and Butterfly against Loop oversampling. Writes a CSV and a plot.
 
 usage: /usr/bin/python3 tools/remesh_experiments.py [--quick] [--out docs/remesh_experiments]
   (needs build/tools/srcodec, python3-matplotlib; the corpus in ../shared/data/meshes)
@@ -27,12 +27,15 @@ FULL = {
     "meshes": ["fandisk.obj", "rocker-arm.obj", "spot.obj"],
     "levels": 4,
     "thresholds": [4, 8, 16],
+    # Our geometric criterion (--uniform --tolerance DB), beside the paper's.
+    "tolerances": [60, 70],
     "scheme_meshes": ["bunny_npm.obj", "spot.obj"],
 }
-QUICK = {"meshes": ["armadillo.obj"], "levels": 4, "thresholds": [4], "scheme_meshes": ["bunny_npm.obj"]}
+QUICK = {"meshes": ["armadillo.obj"], "levels": 4, "thresholds": [4], "tolerances": [60],
+         "scheme_meshes": ["bunny_npm.obj"]}
 
-FIELDS = ["mesh", "config", "scheme", "oversample", "threshold", "level", "vertices", "triangles", "rms", "psnr",
-          "seconds"]
+FIELDS = ["mesh", "config", "scheme", "oversample", "threshold", "tolerance_db", "level", "vertices", "triangles",
+          "rms", "psnr", "seconds"]
 
 
 def run(mesh, levels, extra):
@@ -47,7 +50,8 @@ def run(mesh, levels, extra):
 def rows_of(mesh, config, scheme, result):
     for lv in result["levels"]:
         yield {"mesh": mesh, "config": config, "scheme": scheme, "oversample": result["oversample_steps"],
-               "threshold": "" if result["uniform"] else result["threshold"], "level": lv["level"],
+               "threshold": "" if result["uniform"] else result["threshold"],
+               "tolerance_db": result.get("tolerance_db") or "", "level": lv["level"],
                "vertices": lv["vertices"], "triangles": lv["triangles"], "rms": lv["rms"], "psnr": lv["psnr"],
                "seconds": lv["seconds"]}
 
@@ -64,6 +68,9 @@ def main():
         for eps in plan["thresholds"]:
             rows += rows_of(mesh, f"eps={eps}", "butterfly",
                             run(mesh, plan["levels"], ["--threshold", str(eps)]))
+        for tol in plan["tolerances"]:
+            rows += rows_of(mesh, f"tol={tol} dB", "butterfly",
+                            run(mesh, plan["levels"], ["--uniform", "--tolerance", str(tol)]))
     # Fig. 6: the input oversampled three times with Butterfly or with Loop.
     for mesh in plan["scheme_meshes"]:
         for scheme in ["butterfly", "loop"]:
