@@ -475,19 +475,14 @@ class Refiner {
       size_t fixed = 0;
       for (int32_t s : tangled) {
         if (neighbors_.begin(s) == neighbors_.end(s)) continue;
-        Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-        for (const int32_t* n = neighbors_.begin(s); n != neighbors_.end(s); ++n) mean += points_[anchor_[*n]];
-        mean /= static_cast<double>(neighbors_.end(s) - neighbors_.begin(s));
+        const Eigen::Vector3d mean = neighbour_mean(s);
         const int32_t face = param_[anchor_[s]].face;
         const std::pair<int, double> before = star_quality(s, anchor_[s]);
         const size_t k = input_tree_.knnSearch(mean.data(), kCandidates, idx.data(), dist.data());
         for (size_t j = 0; j < k; ++j) {
           const int32_t i = static_cast<int32_t>(idx[j]);
           if (site_of_[i] >= 0 || !allowed(s, i) || !near_face(face, param_[i].face)) continue;
-          // Fewer folds, or as many but the worst triangle less bad: a fold
-          // two vertices share is undone by moving them in turn.
-          const std::pair<int, double> after = star_quality(s, i);
-          if (after.first < before.first || (after.first == before.first && after.second > before.second + 1e-12)) {
+          if (better_star(star_quality(s, i), before)) {
             site_of_[anchor_[s]] = -1;
             anchor_[s] = i;
             site_of_[i] = s;
@@ -516,13 +511,9 @@ class Refiner {
         if (!folded(tri, -1, -1)) continue;
         for (int32_t s : tri) {
           if (neighbors_.begin(s) == neighbors_.end(s)) continue;
-          Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-          for (const int32_t* n = neighbors_.begin(s); n != neighbors_.end(s); ++n) mean += points_[anchor_[*n]];
-          mean /= static_cast<double>(neighbors_.end(s) - neighbors_.begin(s));
           const int32_t from = anchor_[s];
-          const int32_t i = add_point(mean, param_[from], normals_[from], site_on_boundary_[s]);
-          const std::pair<int, double> before = star_quality(s, from), after = star_quality(s, i);
-          if (after.first < before.first || (after.first == before.first && after.second > before.second + 1e-12)) {
+          const int32_t i = add_point(neighbour_mean(s), param_[from], normals_[from], site_on_boundary_[s]);
+          if (better_star(star_quality(s, i), star_quality(s, from))) {
             site_of_[from] = -1;
             anchor_[s] = i;
             site_of_[i] = s;
@@ -591,6 +582,21 @@ class Refiner {
   // Folded: facing the wrong way, or so thin it has no usable area.
   bool folded(const std::array<int32_t, 3>& tri, int32_t moved, int32_t to) const {
     return !(facing(tri, moved, to) > 1e-9);
+  }
+
+  // The mean position of site s's neighbours in the current level's mesh
+  // (s has at least one): the Laplacian target of the untangling.
+  Eigen::Vector3d neighbour_mean(int32_t s) const {
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const int32_t* n = neighbors_.begin(s); n != neighbors_.end(s); ++n) mean += points_[anchor_[*n]];
+    return mean / static_cast<double>(neighbors_.end(s) - neighbors_.begin(s));
+  }
+
+  // star_quality() `after` beats `before`: fewer folds, or as many but the
+  // worst triangle less bad (a fold two vertices share is undone by moving
+  // them in turn).
+  static bool better_star(const std::pair<int, double>& after, const std::pair<int, double>& before) {
+    return after.first < before.first || (after.first == before.first && after.second > before.second + 1e-12);
   }
 
   // Around site s on input vertex `to`: the folded triangles, and the worst
@@ -691,39 +697,36 @@ class Refiner {
         sum[nearest[i]] += squared[i];
         ++count[nearest[i]];
       }
+    // Each leaf's triangle in the level's mesh (-1: split there by the closure).
     const auto& nodes = h_.nodes();
-    auto triangle_of = [&](int32_t n) -> int32_t {
+    std::vector<int32_t> triangle_of(nodes.size(), -1);
+    for (size_t n = 0; n < nodes.size(); ++n) {
+      if (nodes[n].level != level || nodes[n].first_child >= 0) continue;
       const auto& v = nodes[n].v;
       for (const int32_t* t = around_.begin(v[0]); t != around_.end(v[0]); ++t) {
         const auto& tri = triangles_[*t];
-        if (std::find(tri.begin(), tri.end(), v[1]) != tri.end() && std::find(tri.begin(), tri.end(), v[2]) != tri.end())
-          return *t;
+        if (std::find(tri.begin(), tri.end(), v[1]) != tri.end() && std::find(tri.begin(), tri.end(), v[2]) != tri.end()) {
+          triangle_of[n] = *t;
+          break;
+        }
       }
-      return -1;
-    };
+    }
     std::vector<double> out(nodes.size(), std::numeric_limits<double>::infinity());
     for (size_t n = 0; n < nodes.size(); ++n) {
       const TriangleHierarchy::Node& node = nodes[n];
-      if (node.level != level || node.first_child >= 0) continue;
-      const int32_t own = triangle_of(static_cast<int32_t>(n));
+      const int32_t own = triangle_of[n];
       if (own < 0) continue;
       double pooled = sum[own];
       int64_t points = count[own];
       if (node.parent >= 0) {
-        double siblings = 0.0;
-        int64_t sibling_points = 0;
-        bool whole = true;
-        for (int c = 0; c < 4 && whole; ++c) {
-          const int32_t t = triangle_of(nodes[node.parent].first_child + c);
-          whole = t >= 0;
-          if (whole) {
-            siblings += sum[t];
-            sibling_points += count[t];
+        const int32_t first = nodes[node.parent].first_child;
+        if (std::all_of(&triangle_of[first], &triangle_of[first] + 4, [](int32_t t) { return t >= 0; })) {
+          pooled = 0.0;
+          points = 0;
+          for (int c = 0; c < 4; ++c) {
+            pooled += sum[triangle_of[first + c]];
+            points += count[triangle_of[first + c]];
           }
-        }
-        if (whole) {
-          pooled = siblings;
-          points = sibling_points;
         }
       }
       out[n] = points > 0 ? std::sqrt(pooled / static_cast<double>(points)) : 0.0;
