@@ -299,42 +299,67 @@ class Refiner {
     return take(v, i);
   }
 
+  struct SurfacePoint {
+    Eigen::Vector3d x;
+    Eigen::Vector3d normal;  // unit, of the input triangle it lies on
+    int32_t vertex = -1;     // the input vertex whose triangle it lies on (-1: none found)
+  };
+
   // The point of the input surface nearest to x among the triangles around
-  // the input vertices nearest x (on the base faces near `face`), added as a
-  // point off the input's vertices; -1 when it is no nearer than sqrt(bound).
-  int32_t surface_point(const Eigen::Vector3d& x, int32_t face, double bound) {
+  // the input vertices nearest x (on the base faces near `face`, not on the
+  // input's boundary, and facing along `side` unless it is zero: the sheet a
+  // site is on, where two sheets of a thin part are near); vertex -1 when
+  // none is nearer than sqrt(bound).
+  SurfacePoint nearest_on_surface(const Eigen::Vector3d& x, int32_t face, double bound,
+                                  const Eigen::Vector3d& side = Eigen::Vector3d::Zero()) const {
     constexpr size_t kNear = 8;
     std::array<uint32_t, kNear> idx{};
     std::array<double, kNear> dist{};
     const size_t k = input_tree_.knnSearch(x.data(), kNear, idx.data(), dist.data());
-    Eigen::Vector3d best_point = Eigen::Vector3d::Zero();
-    int32_t best_triangle = -1, best_vertex = -1;
+    SurfacePoint out;
+    int32_t best_triangle = -1;
     for (size_t j = 0; j < k; ++j) {
       const int32_t i = static_cast<int32_t>(idx[j]);
       if (input_on_boundary_[i] || !near_face(face, param_[i].face)) continue;
       for (const int32_t* t = input_around_.begin(i); t != input_around_.end(i); ++t) {
         const auto& tri = input_.triangles[*t];
+        if (!(side.dot((points_[tri[1]] - points_[tri[0]]).cross(points_[tri[2]] - points_[tri[0]])) >= 0.0)) continue;
         const Eigen::Vector3d q = closest_on_triangle(x, points_[tri[0]], points_[tri[1]], points_[tri[2]]);
         const double d = (q - x).squaredNorm();
         if (d < bound) {
           bound = d;
-          best_point = q;
+          out.x = q;
           best_triangle = *t;
-          best_vertex = i;
+          out.vertex = i;
         }
       }
     }
-    if (best_triangle < 0) return -1;
+    if (best_triangle < 0) return out;
     const auto& tri = input_.triangles[best_triangle];
-    Eigen::Vector3d normal = (points_[tri[1]] - points_[tri[0]]).cross(points_[tri[2]] - points_[tri[0]]);
-    if (normal.norm() > 0.0) normal.normalize();
-    return add_point(best_point, param_[best_vertex], normal, 0);
+    out.normal = (points_[tri[1]] - points_[tri[0]]).cross(points_[tri[2]] - points_[tri[0]]);
+    if (out.normal.norm() > 0.0) out.normal.normalize();
+    return out;
+  }
+
+  // nearest_on_surface's point, added as a point off the input's vertices;
+  // -1 when there is none.
+  int32_t surface_point(const Eigen::Vector3d& x, int32_t face, double bound) {
+    const SurfacePoint q = nearest_on_surface(x, face, bound);
+    if (q.vertex < 0) return -1;
+    return add_point(q.x, param_[q.vertex], q.normal, 0);
   }
 
   Status take(int32_t v, int32_t i) {
     anchor_[v] = i;
     site_of_[i] = v;
     return ok_status();
+  }
+
+  // Site s leaves its point for point i (free), which it now holds.
+  void move_site(int32_t s, int32_t i) {
+    site_of_[anchor_[s]] = -1;
+    anchor_[s] = i;
+    site_of_[i] = s;
   }
 
   // Eq. 1 restricted to the sites near each input vertex on the base domain.
@@ -431,9 +456,7 @@ class Refiner {
           ++lr.refused_folds;
           continue;
         }
-        site_of_[anchor_[s]] = -1;
-        anchor_[s] = best;
-        site_of_[best] = row;
+        move_site(row, best);
         ++moved;
       }
       lr.moves += moved;
@@ -446,6 +469,7 @@ class Refiner {
       if (members.offsets[s + 1] - members.offsets[s] == 1) ++lr.empty_cells;
     untangle(lr);
     for (const auto& tri : triangles_) lr.folded_triangles += folded(tri, -1, -1);
+    lr.pleats = pleats().size();
     for (const auto& level_tris : coarse_triangles_)
       for (const auto& tri : level_tris) lr.coarse_folded_triangles += folded(tri, -1, -1);
     return reassign(level);
@@ -464,11 +488,7 @@ class Refiner {
     std::vector<double> dist(kCandidates);
     for (int pass = 0; pass < kPasses; ++pass) {
       std::vector<int32_t> tangled;
-      for (const auto& tri : triangles_)
-        if (folded(tri, -1, -1)) tangled.insert(tangled.end(), tri.begin(), tri.end());
-      for (const auto& level_tris : coarse_triangles_)
-        for (const auto& tri : level_tris)
-          if (folded(tri, -1, -1)) tangled.insert(tangled.end(), tri.begin(), tri.end());
+      for (const auto& tri : folded_triangles()) tangled.insert(tangled.end(), tri.begin(), tri.end());
       if (tangled.empty()) return;
       std::sort(tangled.begin(), tangled.end());
       tangled.erase(std::unique(tangled.begin(), tangled.end()), tangled.end());
@@ -483,9 +503,7 @@ class Refiner {
           const int32_t i = static_cast<int32_t>(idx[j]);
           if (site_of_[i] >= 0 || !allowed(s, i) || !near_face(face, param_[i].face)) continue;
           if (better_star(star_quality(s, i), before)) {
-            site_of_[anchor_[s]] = -1;
-            anchor_[s] = i;
-            site_of_[i] = s;
+            move_site(s, i);
             ++fixed;
             break;
           }
@@ -500,23 +518,15 @@ class Refiner {
     // Repeated while it helps: a site moved off the input can free its
     // neighbours for the next pass.
     for (int pass = 0; pass < kPasses; ++pass) {
-      std::vector<std::array<int32_t, 3>> still_folded;
-      for (const auto& tri : triangles_)
-        if (folded(tri, -1, -1)) still_folded.push_back(tri);
-      for (const auto& level_tris : coarse_triangles_)
-        for (const auto& tri : level_tris)
-          if (folded(tri, -1, -1)) still_folded.push_back(tri);
       size_t moved = 0;
-      for (const auto& tri : still_folded) {
+      for (const auto& tri : folded_triangles()) {
         if (!folded(tri, -1, -1)) continue;
         for (int32_t s : tri) {
           if (neighbors_.begin(s) == neighbors_.end(s)) continue;
           const int32_t from = anchor_[s];
           const int32_t i = add_point(neighbour_mean(s), param_[from], normals_[from], site_on_boundary_[s]);
           if (better_star(star_quality(s, i), star_quality(s, from))) {
-            site_of_[from] = -1;
-            anchor_[s] = i;
-            site_of_[i] = s;
+            move_site(s, i);
             ++lr.off_input_moves;
             ++moved;
             break;
@@ -526,6 +536,197 @@ class Refiner {
       }
       if (moved == 0) break;
     }
+    smooth_tangles(lr);
+  }
+
+  // The triangle of the current level's mesh across edge (c, c + 1) of
+  // triangle t, or -1 on the boundary.
+  int32_t across(int32_t t, int c) const {
+    const int32_t a = triangles_[t][c], b = triangles_[t][(c + 1) % 3];
+    for (const int32_t* u = around_.begin(a); u != around_.end(a); ++u)
+      if (*u != t && std::find(triangles_[*u].begin(), triangles_[*u].end(), b) != triangles_[*u].end()) return *u;
+    return -1;
+  }
+
+  // Triangles t and u of the current level's mesh (neighbours) meet at more
+  // than 150 degrees, folded onto each other: a pleat, which the facing test
+  // misses when both lean the same way. Not on a smooth surface sampled as
+  // finely as the finest level.
+  bool pleated(int32_t t, int32_t u) const {
+    auto normal = [&](int32_t k) {
+      const auto& tri = triangles_[k];
+      const Eigen::Vector3d &p0 = points_[anchor_[tri[0]]], &p1 = points_[anchor_[tri[1]]], &p2 = points_[anchor_[tri[2]]];
+      return Eigen::Vector3d((p1 - p0).cross(p2 - p0));
+    };
+    constexpr double kCos150 = -0.86602540378443865;
+    const Eigen::Vector3d nt = normal(t), nu = normal(u);
+    return nt.dot(nu) < kCos150 * nt.norm() * nu.norm();
+  }
+
+  // The pleated pairs of neighbouring triangles (t < u) of the current
+  // level's mesh.
+  std::vector<std::pair<int32_t, int32_t>> pleats() const {
+    std::vector<std::pair<int32_t, int32_t>> out;
+    for (int32_t t = 0; t < static_cast<int32_t>(triangles_.size()); ++t)
+      for (int c = 0; c < 3; ++c) {
+        const int32_t u = across(t, c);
+        if (u > t && pleated(t, u)) out.emplace_back(t, u);
+      }
+    return out;
+  }
+
+  // The folded triangles of the current level's mesh and of the coarser ones.
+  std::vector<std::array<int32_t, 3>> folded_triangles() const {
+    std::vector<std::array<int32_t, 3>> out;
+    for (const auto& tri : triangles_)
+      if (folded(tri, -1, -1)) out.push_back(tri);
+    for (const auto& level_tris : coarse_triangles_)
+      for (const auto& tri : level_tris)
+        if (folded(tri, -1, -1)) out.push_back(tri);
+    return out;
+  }
+
+  // The resort for folds that no single site's move undoes (a site whose
+  // neighbours are themselves out of place, often beside a jagged hole),
+  // and for pleats: Laplacian smoothing of the patch around each, every
+  // interior site of the patch at once, each step's positions put back on
+  // the input surface. A patch's new positions are kept only when its
+  // triangles have fewer folds (on every level), or as many and fewer
+  // pleats; the patches grow ring by ring while any remain. Boundary sites
+  // stay where they are.
+  void smooth_tangles(RefineLevelReport& lr) {
+    const size_t sites = neighbors_.offsets.size() - 1;
+    std::vector<char> in;
+    std::vector<int32_t> frontier, next, patch;
+    for (int rings : {1, 2, 4, 8}) {
+      std::vector<std::array<int32_t, 3>> folds = folded_triangles();
+      for (const auto& [t, u] : pleats()) {
+        folds.push_back(triangles_[t]);
+        folds.push_back(triangles_[u]);
+      }
+      if (folds.empty()) return;
+      in.assign(sites, 0);
+      frontier.clear();
+      for (const auto& tri : folds)
+        for (int32_t s : tri)
+          if (!in[s]) {
+            in[s] = 1;
+            frontier.push_back(s);
+          }
+      for (int r = 0; r < rings; ++r) {
+        next.clear();
+        for (int32_t s : frontier)
+          for (const int32_t* n = neighbors_.begin(s); n != neighbors_.end(s); ++n)
+            if (!in[*n]) {
+              in[*n] = 1;
+              next.push_back(*n);
+            }
+        frontier.swap(next);
+      }
+      // Each connected part of the marked sites is a patch (2: taken).
+      for (size_t start = 0; start < sites; ++start) {
+        if (in[start] != 1) continue;
+        patch.assign(1, static_cast<int32_t>(start));
+        in[start] = 2;
+        for (size_t j = 0; j < patch.size(); ++j)
+          for (const int32_t* n = neighbors_.begin(patch[j]); n != neighbors_.end(patch[j]); ++n)
+            if (in[*n] == 1) {
+              in[*n] = 2;
+              patch.push_back(*n);
+            }
+        std::sort(patch.begin(), patch.end());
+        lr.smoothed += smooth_patch(patch);
+      }
+    }
+  }
+
+  // smooth_tangles for one patch (sorted sites); returns the sites moved.
+  // Smoothing far enough untangles the patch but can fold triangles at its
+  // rim, where the sites that stay put are denser or sparser than the mean:
+  // the patch keeps the step count, out of a few, that leaves fewest folds,
+  // then fewest pleats.
+  size_t smooth_patch(const std::vector<int32_t>& patch) {
+    constexpr std::array<int, 7> kCheckpoints{1, 2, 3, 5, 8, 13, 20};
+    // The triangles around the patch, per level (this level's mesh last).
+    std::vector<std::vector<int32_t>> around(coarse_triangles_.size() + 1);
+    auto gather = [&](const Adjacency& adjacency, std::vector<int32_t>& ids) {
+      for (int32_t s : patch) ids.insert(ids.end(), adjacency.begin(s), adjacency.end(s));
+      std::sort(ids.begin(), ids.end());
+      ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    };
+    for (size_t k = 0; k < coarse_triangles_.size(); ++k) gather(coarse_around_[k], around[k]);
+    gather(around_, around.back());
+    // (folded triangles on every level, pleats in this level's mesh)
+    auto folds = [&] {
+      std::pair<size_t, size_t> count{0, 0};
+      for (size_t k = 0; k < around.size(); ++k) {
+        const auto& tris = k < coarse_triangles_.size() ? coarse_triangles_[k] : triangles_;
+        for (int32_t t : around[k]) count.first += folded(tris[t], -1, -1);
+      }
+      const std::vector<int32_t>& fine = around.back();
+      for (int32_t t : fine)
+        for (int c = 0; c < 3; ++c) {
+          const int32_t u = across(t, c);
+          if (u >= 0 && (u > t || !std::binary_search(fine.begin(), fine.end(), u))) count.second += pleated(t, u);
+        }
+      return count;
+    };
+    std::vector<int32_t> movable, old;
+    for (int32_t s : patch)
+      if (!site_on_boundary_[s] && neighbors_.begin(s) != neighbors_.end(s)) movable.push_back(s);
+    if (movable.empty()) return 0;
+    // Positions during the smoothing: the movable sites' own, the others'
+    // from their points.
+    std::vector<Eigen::Vector3d> x(movable.size()), stepped(movable.size());
+    std::vector<SurfacePoint> on(movable.size()), best_on;
+    for (size_t j = 0; j < movable.size(); ++j) {
+      old.push_back(anchor_[movable[j]]);
+      x[j] = points_[old[j]];
+    }
+    auto position = [&](int32_t s) -> const Eigen::Vector3d& {
+      const auto it = std::lower_bound(movable.begin(), movable.end(), s);
+      return it != movable.end() && *it == s ? x[it - movable.begin()] : points_[anchor_[s]];
+    };
+    // Puts the movable sites on points at x (on the input surface where
+    // `on` found it); undo() takes them back to their old points.
+    const size_t points_before = points_.size();
+    auto apply = [&] {
+      for (size_t j = 0; j < movable.size(); ++j)
+        move_site(movable[j], add_point(x[j], param_[on[j].vertex], on[j].normal, 0));
+    };
+    auto undo = [&] {
+      for (size_t j = 0; j < movable.size(); ++j) move_site(movable[j], old[j]);
+      while (points_.size() > points_before) drop_last_point();
+    };
+    std::pair<size_t, size_t> best = folds();
+    std::vector<Eigen::Vector3d> best_x;
+    for (int step = 1; step <= kCheckpoints.back(); ++step) {
+      for (size_t j = 0; j < movable.size(); ++j) {
+        const int32_t s = movable[j];
+        Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+        for (const int32_t* n = neighbors_.begin(s); n != neighbors_.end(s); ++n) mean += position(*n);
+        mean /= static_cast<double>(neighbors_.end(s) - neighbors_.begin(s));
+        on[j] = nearest_on_surface(mean, param_[old[j]].face, std::numeric_limits<double>::infinity(), normals_[old[j]]);
+        stepped[j] = on[j].x;
+      }
+      x.swap(stepped);
+      // A site the input surface was not found under has left it: stop.
+      if (std::any_of(on.begin(), on.end(), [](const SurfacePoint& q) { return q.vertex < 0; })) break;
+      if (std::find(kCheckpoints.begin(), kCheckpoints.end(), step) == kCheckpoints.end()) continue;
+      apply();
+      const std::pair<size_t, size_t> now = folds();
+      undo();
+      if (now < best) {
+        best = now;
+        best_x = x;
+        best_on = on;
+      }
+    }
+    if (best_x.empty()) return 0;
+    x.swap(best_x);
+    on.swap(best_on);
+    apply();
+    return movable.size();
   }
 
   // A point that is not an input vertex (an edge midpoint, or an untangled

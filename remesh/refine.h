@@ -53,6 +53,9 @@ struct RefineLevelReport {
   // remesh.
   size_t folded_triangles = 0;
   size_t coarse_folded_triangles = 0;  // the same, summed over the coarser levels' meshes
+  // Edges of the level's mesh whose two triangles meet at more than 150
+  // degrees (folded onto each other, whichever way they face).
+  size_t pleats = 0;
   size_t untangled = 0;  // sites moved by the Laplacian untangling after Lloyd
   // New vertices put at their parent edge's midpoint because no free input
   // vertex was near: the input is too coarse there (oversample more).
@@ -63,6 +66,9 @@ struct RefineLevelReport {
   // Sites moved off the input, to the mean of their neighbours, because no
   // input vertex undid a fold around them.
   size_t off_input_moves = 0;
+  // Sites moved by the Laplacian smoothing of patches around folds that
+  // single moves left (onto the input surface, between its vertices).
+  size_t smoothed = 0;
   double seconds = 0.0;
 };
 

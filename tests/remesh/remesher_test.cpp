@@ -131,7 +131,8 @@ RemeshOptions small_options(int levels, size_t base, bool uniform) {
 
 TEST(Remesher, UniformSphereIsSemiRegularOnInputVertices) {
   const TriangleMesh sphere = test::icosphere(5, 1.0);  // 10242 vertices
-  auto srm = remesh(sphere, small_options(3, 40, true));
+  RemeshReport report;
+  auto srm = remesh(sphere, small_options(3, 40, true), &report);
   ASSERT_TRUE(srm.ok()) << srm.status().message();
   EXPECT_EQ(srm->levels, 3);
   expect_semi_regular(srm.value());
@@ -139,6 +140,12 @@ TEST(Remesher, UniformSphereIsSemiRegularOnInputVertices) {
   EXPECT_EQ(srm->level_mesh(3).triangles.size(), srm->base.triangles.size() * 64);
   EXPECT_EQ(folded_triangles(sphere, srm->level_mesh(3)), 0u);
   EXPECT_EQ(stats(srm->level_mesh(3)).genus, 0);
+  // The remesher's own counts agree: nothing folded or pleated on a sphere.
+  ASSERT_EQ(report.levels.size(), 3u);
+  for (const RefineLevelReport& lr : report.levels) {
+    EXPECT_EQ(lr.folded_triangles + lr.coarse_folded_triangles, 0u) << "level " << lr.level;
+    EXPECT_EQ(lr.pleats, 0u) << "level " << lr.level;
+  }
 }
 
 TEST(Remesher, OpenSquareKeepsItsBoundary) {

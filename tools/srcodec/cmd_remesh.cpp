@@ -73,10 +73,12 @@ Status run_remesh(const RemeshCliOptions& o) {
             .field("refused_folds", lr.refused_folds)
             .field("folded_triangles", lr.folded_triangles)
             .field("coarse_folded_triangles", lr.coarse_folded_triangles)
+            .field("pleats", lr.pleats)
             .field("untangled", lr.untangled)
             .field("midpoint_vertices", lr.midpoint_vertices)
             .field("surface_vertices", lr.surface_vertices)
             .field("off_input_moves", lr.off_input_moves)
+            .field("smoothed", lr.smoothed)
             .field("empty_cells", lr.empty_cells);
       }
       level_json.push_back(j);
