@@ -341,6 +341,45 @@ class Refiner {
     return out;
   }
 
+  // The point of the input's boundary nearest to x among the boundary edges
+  // at the input vertices nearest x (on the base faces near `face`); vertex
+  // -1 when there is none.
+  SurfacePoint nearest_on_boundary(const Eigen::Vector3d& x, int32_t face) const {
+    constexpr size_t kNear = 16;
+    std::array<uint32_t, kNear> idx{};
+    std::array<double, kNear> dist{};
+    const size_t k = input_tree_.knnSearch(x.data(), kNear, idx.data(), dist.data());
+    SurfacePoint out;
+    double bound = std::numeric_limits<double>::infinity();
+    for (size_t j = 0; j < k; ++j) {
+      const int32_t i = static_cast<int32_t>(idx[j]);
+      if (!input_on_boundary_[i] || !near_face(face, param_[i].face)) continue;
+      for (const int32_t* t = input_around_.begin(i); t != input_around_.end(i); ++t)
+        for (int32_t other : input_.triangles[*t]) {
+          if (other == i || !input_on_boundary_[other]) continue;
+          // (i, other) is a boundary edge when only one triangle has both.
+          int shared = 0;
+          for (const int32_t* u = input_around_.begin(i); u != input_around_.end(i); ++u) {
+            const auto& tri = input_.triangles[*u];
+            shared += std::find(tri.begin(), tri.end(), other) != tri.end();
+          }
+          if (shared != 1) continue;
+          const Eigen::Vector3d &a = points_[i], &b = points_[other];
+          const double len2 = (b - a).squaredNorm();
+          const double along = len2 > 0.0 ? std::clamp((x - a).dot(b - a) / len2, 0.0, 1.0) : 0.0;
+          const Eigen::Vector3d q = a + along * (b - a);
+          const double d = (q - x).squaredNorm();
+          if (d < bound) {
+            bound = d;
+            out.x = q;
+            out.vertex = along < 0.5 ? i : other;
+            out.normal = normals_[out.vertex];
+          }
+        }
+    }
+    return out;
+  }
+
   // nearest_on_surface's point, added as a point off the input's vertices;
   // -1 when there is none.
   int32_t surface_point(const Eigen::Vector3d& x, int32_t face, double bound) {
@@ -475,13 +514,28 @@ class Refiner {
     return reassign(level);
   }
 
-  // Lloyd cannot undo every fold the initial placement made: a site whose
-  // cell sits on the wrong side of a neighbour moves within that cell. For
-  // each site on a folded triangle, try the free input vertices nearest (in
-  // space) to the mean of its neighbours, a Laplacian step, and take the
-  // first that leaves fewer folded triangles around it, or as many with a
-  // better worst triangle.
+  // Lloyd cannot undo every fold the initial placement made, nor the pleats:
+  // three repairs, in rounds while they leave fewer folds and pleats (a
+  // repair can free the sites another needs).
   void untangle(RefineLevelReport& lr) {
+    constexpr int kRounds = 4;
+    size_t before = folded_triangles().size() + pleats().size();
+    for (int round = 0; round < kRounds && before > 0; ++round) {
+      untangle_on_input(lr);
+      smooth_tangles(lr);  // before leaving the surface: 79.67 dB and 9 folds on the bunny, against 79.49 and 12
+      untangle_off_input(lr);
+      const size_t after = folded_triangles().size() + pleats().size();
+      if (after >= before) break;
+      before = after;
+    }
+  }
+
+  // A site whose cell sits on the wrong side of a neighbour moves within
+  // that cell. For each site on a folded triangle, try the free input
+  // vertices nearest (in space) to the mean of its neighbours, a Laplacian
+  // step, and take the first that leaves fewer folded triangles around it,
+  // or as many with a better worst triangle.
+  void untangle_on_input(RefineLevelReport& lr) {
     constexpr int kPasses = 8;
     constexpr size_t kCandidates = 48;
     std::vector<uint32_t> idx(kCandidates);
@@ -489,7 +543,7 @@ class Refiner {
     for (int pass = 0; pass < kPasses; ++pass) {
       std::vector<int32_t> tangled;
       for (const auto& tri : folded_triangles()) tangled.insert(tangled.end(), tri.begin(), tri.end());
-      if (tangled.empty()) return;
+      if (tangled.empty()) break;
       std::sort(tangled.begin(), tangled.end());
       tangled.erase(std::unique(tangled.begin(), tangled.end()), tangled.end());
       size_t fixed = 0;
@@ -512,11 +566,15 @@ class Refiner {
       lr.untangled += fixed;
       if (fixed == 0) break;
     }
-    // Last resort for the few folds no input vertex undoes (a site squeezed
-    // between neighbours that are themselves stuck): the site leaves the
-    // input and goes to the mean of its neighbours, when that is better.
-    // Repeated while it helps: a site moved off the input can free its
-    // neighbours for the next pass.
+  }
+
+  // For the few folds no input vertex undoes (a site squeezed between
+  // neighbours that are themselves stuck): the site leaves the input and
+  // goes to the mean of its neighbours, when that is better. Repeated while
+  // it helps: a site moved off the input can free its neighbours for the
+  // next pass.
+  void untangle_off_input(RefineLevelReport& lr) {
+    constexpr int kPasses = 8;
     for (int pass = 0; pass < kPasses; ++pass) {
       size_t moved = 0;
       for (const auto& tri : folded_triangles()) {
@@ -536,7 +594,14 @@ class Refiner {
       }
       if (moved == 0) break;
     }
-    smooth_tangles(lr);
+  }
+
+  // Edge (a, b) of the current level's mesh has one triangle.
+  bool boundary_edge(int32_t a, int32_t b) const {
+    int shared = 0;
+    for (const int32_t* t = around_.begin(a); t != around_.end(a); ++t)
+      shared += std::find(triangles_[*t].begin(), triangles_[*t].end(), b) != triangles_[*t].end();
+    return shared == 1;
   }
 
   // The triangle of the current level's mesh across edge (c, c + 1) of
@@ -593,7 +658,7 @@ class Refiner {
   // the input surface. A patch's new positions are kept only when its
   // triangles have fewer folds (on every level), or as many and fewer
   // pleats; the patches grow ring by ring while any remain. Boundary sites
-  // stay where they are.
+  // move along the input's boundary.
   void smooth_tangles(RefineLevelReport& lr) {
     const size_t sites = neighbors_.offsets.size() - 1;
     std::vector<char> in;
@@ -671,9 +736,27 @@ class Refiner {
         }
       return count;
     };
+    // Interior sites move to their neighbours' mean, boundary sites to the
+    // mean of their two neighbours along the boundary, put back on the
+    // input's boundary (rim: those two neighbours).
     std::vector<int32_t> movable, old;
-    for (int32_t s : patch)
-      if (!site_on_boundary_[s] && neighbors_.begin(s) != neighbors_.end(s)) movable.push_back(s);
+    std::vector<std::array<int32_t, 2>> rim;
+    for (int32_t s : patch) {
+      std::array<int32_t, 2> along{-1, -1};
+      if (site_on_boundary_[s]) {
+        int found = 0;
+        for (const int32_t* n = neighbors_.begin(s); n != neighbors_.end(s); ++n)
+          if (site_on_boundary_[*n] && boundary_edge(s, *n) && found < 3) {
+            if (found < 2) along[found] = *n;
+            ++found;
+          }
+        if (found != 2) continue;  // a corner where boundary loops touch: stays
+      } else if (neighbors_.begin(s) == neighbors_.end(s)) {
+        continue;
+      }
+      movable.push_back(s);
+      rim.push_back(along);
+    }
     if (movable.empty()) return 0;
     // Positions during the smoothing: the movable sites' own, the others'
     // from their points.
@@ -692,7 +775,7 @@ class Refiner {
     const size_t points_before = points_.size();
     auto apply = [&] {
       for (size_t j = 0; j < movable.size(); ++j)
-        move_site(movable[j], add_point(x[j], param_[on[j].vertex], on[j].normal, 0));
+        move_site(movable[j], add_point(x[j], param_[on[j].vertex], on[j].normal, rim[j][0] >= 0));
     };
     auto undo = [&] {
       for (size_t j = 0; j < movable.size(); ++j) move_site(movable[j], old[j]);
@@ -703,6 +786,11 @@ class Refiner {
     for (int step = 1; step <= kCheckpoints.back(); ++step) {
       for (size_t j = 0; j < movable.size(); ++j) {
         const int32_t s = movable[j];
+        if (rim[j][0] >= 0) {
+          on[j] = nearest_on_boundary(0.5 * (position(rim[j][0]) + position(rim[j][1])), param_[old[j]].face);
+          stepped[j] = on[j].x;
+          continue;
+        }
         Eigen::Vector3d mean = Eigen::Vector3d::Zero();
         for (const int32_t* n = neighbors_.begin(s); n != neighbors_.end(s); ++n) mean += position(*n);
         mean /= static_cast<double>(neighbors_.end(s) - neighbors_.begin(s));
