@@ -7,7 +7,13 @@
 //    the base domain: the corners of the semi-regular triangle its
 //    parameterization falls in, and their neighbours. A global nearest site
 //    would jump across thin parts (two sides of an ear) once the sites are
-//    dense; the parameterization knows which side a vertex is on.
+//    dense; the parameterization knows which side a vertex is on. From the
+//    nearest of those, it walks the level's mesh to a neighbour while one is
+//    nearer: the parameterization is the base mesh's, and where it is
+//    stretched the located triangle lies rings away from the vertex's
+//    nearest sites, whose cells then miss it (nefertiti with 521 base
+//    vertices: 71.8 dB at 4 levels without the walk, 76.1 with it; armadillo
+//    with 608: 70.5 and 74.6).
 //  - A site's new position is the input vertex of its cell nearest the
 //    cell's density-weighted centroid (Eq. 2 and §II-C), applied site after
 //    site (Gauss-Seidel) so the fold test sees its neighbours' current
@@ -432,6 +438,7 @@ class Refiner {
   bool allowed(int32_t site, int32_t i) const { return site_on_boundary_[site] == input_on_boundary_[i]; }
 
   std::vector<int32_t> reassign(int32_t level) const {
+    constexpr int kMaxWalk = 64;
     std::vector<int32_t> cell_of(points_.size(), -1);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, cell_of.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
       for (size_t i = r.begin(); i != r.end(); ++i) {
@@ -454,6 +461,14 @@ class Refiner {
         for (int32_t c : h_.nodes()[node].v) {
           consider(c);
           for (const int32_t* s = neighbors_.begin(c); s != neighbors_.end(c); ++s) consider(*s);
+        }
+        // Then down the level's mesh, neighbour by neighbour, while a site
+        // is nearer: the base domain locates the vertex on the right sheet,
+        // but its stretch goes stale as sites move.
+        for (int step = 0; step < kMaxWalk && best >= 0; ++step) {
+          const int32_t from = best;
+          for (const int32_t* s = neighbors_.begin(from); s != neighbors_.end(from); ++s) consider(*s);
+          if (best == from) break;
         }
         cell_of[i] = best;
       }
