@@ -217,20 +217,53 @@ class Refiner {
     return false;
   }
 
-  // Starts new vertex v at the free input vertex nearest (on the base domain)
-  // to v's dyadic point, the midpoint of its parent edge (§III-B, Fig. 4b-c).
+  // Starts new vertex v on the surface at its parent edge's midpoint
+  // (§III-B, Fig. 4b-c): the free input vertex nearest the line through the
+  // chord's midpoint along the endpoints' normals, where that line crosses
+  // the surface. The paper's dyadic point on the base domain comes second:
+  // where the base mesh's parameterization is stretched (around holes, on
+  // thin ridges) it lies rings away from the edge, and the nearest point to
+  // the chord's midpoint cuts across curved parts. Measured at 4 levels with
+  // the defaults, against the domain first: igea 86.07 -> 87.74 dB, the
+  // bunny 79.97 -> 80.92 dB with 13 folded triangles -> 6, armadillo 74.23 ->
+  // 75.02, nefertiti 76.80 -> 77.24.
   Status place_new_vertex(int32_t v) {
     const ParamPoint p = h_.nominal_param(v);
-    const Eigen::Vector3d target = on_base(p);
-    // Among the kInit free vertices nearest on the base domain, take the one
-    // nearest in space to the parent edge's midpoint. The domain picks the
-    // right sheet of the surface; space corrects the parameterization's
-    // stretch, which over large base triangles shifts dyadic midpoints by
-    // more than a fine level's spacing and folds triangles.
-    constexpr size_t kInit = 8;
     const auto edge = h_.parent_edge(v);
-    const Eigen::Vector3d midpoint =
-        0.5 * (points_[anchor_[edge[0]]] + points_[anchor_[edge[1]]]);
+    const Eigen::Vector3d &a = points_[anchor_[edge[0]]], &b = points_[anchor_[edge[1]]];
+    const Eigen::Vector3d midpoint = 0.5 * (a + b);
+    const double edge_length = (a - b).norm();
+    const Eigen::Vector3d side = normals_[anchor_[edge[0]]] + normals_[anchor_[edge[1]]];
+    if (side.norm() > 0.0) {
+      const Eigen::Vector3d axis = side.normalized();
+      constexpr size_t kNear = 64;
+      std::array<uint32_t, kNear> idx{};
+      std::array<double, kNear> dist{};
+      const size_t k = input_tree_.knnSearch(midpoint.data(), kNear, idx.data(), dist.data());
+      int32_t best = -1;
+      double best_d = kSparseFraction * edge_length;
+      for (size_t j = 0; j < k; ++j) {
+        const int32_t i = static_cast<int32_t>(idx[j]);
+        // Free, of the site's kind, on the same part of the base domain and
+        // on the same sheet (facing along the edge).
+        if (site_of_[i] >= 0 || !allowed(v, i) || !near_face(p.face, param_[i].face) || !(normals_[i].dot(side) > 0.0))
+          continue;
+        const Eigen::Vector3d off = points_[i] - midpoint;
+        const double along = off.dot(axis);
+        const double across = (off - along * axis).norm();
+        if (std::abs(along) < edge_length && across <= best_d && (across < best_d || i < best)) {
+          best_d = across;
+          best = i;
+        }
+      }
+      if (best >= 0) return take(v, best);
+    }
+    // Else among the kInit free vertices nearest v's dyadic point on the base
+    // domain, the one nearest in space to the edge's midpoint. The domain
+    // picks the right sheet of the surface; space corrects the
+    // parameterization's stretch.
+    constexpr size_t kInit = 8;
+    const Eigen::Vector3d target = on_base(p);
     for (size_t k : {64, 512, 4096}) {
       k = std::min(k, embedded_.size());
       std::vector<uint32_t> idx(k);
@@ -254,7 +287,6 @@ class Refiner {
         // edge: the new vertex goes to the input surface point nearest the
         // edge's midpoint instead (a forced split would otherwise stack
         // vertices and fold the mesh).
-        const double edge_length = (points_[anchor_[edge[0]]] - points_[anchor_[edge[1]]]).norm();
         if (!site_on_boundary_[v] && std::sqrt(best_d) > kSparseFraction * edge_length) {
           const int32_t on_surface = surface_point(midpoint, p.face, best_d);
           if (on_surface >= 0) {
