@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <map>
 #include <set>
 #include <string>
@@ -12,6 +13,7 @@
 #include "format/mesh_stats.h"
 #include "remesh/components.h"
 #include "remesh/oversample.h"
+#include "tools/measure/surface_distance.h"
 #include "tests/test_util.h"
 
 namespace srcodec {
@@ -146,6 +148,26 @@ TEST(Remesher, UniformSphereIsSemiRegularOnInputVertices) {
     EXPECT_EQ(lr.folded_triangles + lr.coarse_folded_triangles, 0u) << "level " << lr.level;
     EXPECT_EQ(lr.pleats, 0u) << "level " << lr.level;
   }
+}
+
+// Where the new vertices start and how the cells are found decide how
+// closely the remesh follows a curved surface: a sphere with bumps, whose
+// base mesh of 40 vertices stretches the parameterization over each bump.
+// Measured 2026-11-28: 58.24 dB; 56.71 dB with the new vertices started at
+// the dyadic point on the base domain and cells found without the walk.
+TEST(Remesher, FollowsABumpySurfaceClosely) {
+  TriangleMesh bumpy = test::icosphere(5, 1.0);  // 10242 vertices
+  for (Eigen::Vector3d& p : bumpy.positions) {
+    const Eigen::Vector3d u = p.normalized();
+    p = u * (1.0 + 0.2 * std::sin(8.0 * u.x()) * std::sin(8.0 * u.y()) * std::sin(8.0 * u.z()));
+  }
+  auto srm = remesh(bumpy, small_options(3, 40, true));
+  ASSERT_TRUE(srm.ok()) << srm.status().message();
+  SurfaceDistanceOptions o;
+  o.samples_per_surface = 50000;
+  auto d = surface_distance(bumpy, srm->level_mesh(3), o);
+  ASSERT_TRUE(d.ok()) << d.status().message();
+  EXPECT_GT(d->psnr, 57.5);
 }
 
 TEST(Remesher, OpenSquareKeepsItsBoundary) {
