@@ -230,7 +230,7 @@ class Refiner {
   Status place_new_vertex(int32_t v) {
     const ParamPoint p = h_.nominal_param(v);
     const auto edge = h_.parent_edge(v);
-    const Eigen::Vector3d &a = points_[anchor_[edge[0]]], &b = points_[anchor_[edge[1]]];
+    const Eigen::Vector3d a = points_[anchor_[edge[0]]], b = points_[anchor_[edge[1]]];  // copies: add_point may grow points_
     const Eigen::Vector3d midpoint = 0.5 * (a + b);
     const double edge_length = (a - b).norm();
     const Eigen::Vector3d side = normals_[anchor_[edge[0]]] + normals_[anchor_[edge[1]]];
@@ -569,7 +569,7 @@ class Refiner {
     size_t before = folded_triangles().size() + pleats().size();
     for (int round = 0; round < kRounds && before > 0; ++round) {
       untangle_on_input(lr);
-      smooth_tangles(lr);  // before leaving the surface: 79.67 dB and 9 folds on the bunny, against 79.49 and 12
+      smooth_tangles(lr);  // before leaving the surface: bunny at 7a08122 79.67 dB and 9 folds, against 79.49 and 12
       untangle_off_input(lr);
       const size_t after = folded_triangles().size() + pleats().size();
       if (after >= before) break;
