@@ -94,6 +94,16 @@ Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vecto
   return a + ab * (vb / denom) + ac * (vc / denom);
 }
 
+// The triangles of `triangles` around vertex a (`around`: vertex_triangles)
+// that also use vertex b: 1 on a boundary edge, 2 inside, 0 if ab is no edge.
+int triangles_on_edge(const Adjacency& around, const std::vector<std::array<int32_t, 3>>& triangles, int32_t a,
+                      int32_t b) {
+  int shared = 0;
+  for (const int32_t* t = around.begin(a); t != around.end(a); ++t)
+    shared += std::find(triangles[*t].begin(), triangles[*t].end(), b) != triangles[*t].end();
+  return shared;
+}
+
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -394,14 +404,9 @@ class Refiner {
       if (!input_on_boundary_[i] || !near_face(face, param_[i].face)) continue;
       for (const int32_t* t = input_around_.begin(i); t != input_around_.end(i); ++t)
         for (int32_t other : input_.triangles[*t]) {
-          if (other == i || !input_on_boundary_[other]) continue;
-          // (i, other) is a boundary edge when only one triangle has both.
-          int shared = 0;
-          for (const int32_t* u = input_around_.begin(i); u != input_around_.end(i); ++u) {
-            const auto& tri = input_.triangles[*u];
-            shared += std::find(tri.begin(), tri.end(), other) != tri.end();
-          }
-          if (shared != 1) continue;
+          if (other == i || !input_on_boundary_[other] ||
+              triangles_on_edge(input_around_, input_.triangles, i, other) != 1)
+            continue;
           const Eigen::Vector3d &a = points_[i], &b = points_[other];
           const double len2 = (b - a).squaredNorm();
           const double along = len2 > 0.0 ? std::clamp((x - a).dot(b - a) / len2, 0.0, 1.0) : 0.0;
@@ -644,12 +649,7 @@ class Refiner {
   }
 
   // Edge (a, b) of the current level's mesh has one triangle.
-  bool boundary_edge(int32_t a, int32_t b) const {
-    int shared = 0;
-    for (const int32_t* t = around_.begin(a); t != around_.end(a); ++t)
-      shared += std::find(triangles_[*t].begin(), triangles_[*t].end(), b) != triangles_[*t].end();
-    return shared == 1;
-  }
+  bool boundary_edge(int32_t a, int32_t b) const { return triangles_on_edge(around_, triangles_, a, b) == 1; }
 
   // The triangle of the current level's mesh across edge (c, c + 1) of
   // triangle t, or -1 on the boundary.
@@ -707,7 +707,7 @@ class Refiner {
   // pleats; the patches grow ring by ring while any remain. Boundary sites
   // move along the input's boundary.
   void smooth_tangles(RefineLevelReport& lr) {
-    const size_t sites = neighbors_.offsets.size() - 1;
+    const size_t sites = neighbors_.size();
     std::vector<char> in;
     std::vector<int32_t> frontier, next, patch;
     for (int rings : {1, 2, 4, 8}) {
@@ -793,7 +793,7 @@ class Refiner {
       if (site_on_boundary_[s]) {
         int found = 0;
         for (const int32_t* n = neighbors_.begin(s); n != neighbors_.end(s); ++n)
-          if (site_on_boundary_[*n] && boundary_edge(s, *n) && found < 3) {
+          if (site_on_boundary_[*n] && boundary_edge(s, *n)) {
             if (found < 2) along[found] = *n;
             ++found;
           }
@@ -838,9 +838,7 @@ class Refiner {
           stepped[j] = on[j].x;
           continue;
         }
-        Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-        for (const int32_t* n = neighbors_.begin(s); n != neighbors_.end(s); ++n) mean += position(*n);
-        mean /= static_cast<double>(neighbors_.end(s) - neighbors_.begin(s));
+        const Eigen::Vector3d mean = neighbour_mean(s, position);
         on[j] = nearest_on_surface(mean, param_[old[j]].face, std::numeric_limits<double>::infinity(), normals_[old[j]]);
         stepped[j] = on[j].x;
       }
@@ -922,10 +920,15 @@ class Refiner {
 
   // The mean position of site s's neighbours in the current level's mesh
   // (s has at least one): the Laplacian target of the untangling.
-  Eigen::Vector3d neighbour_mean(int32_t s) const {
+  // `position(n)` gives a neighbour's position (default: where it sits).
+  template <class Position>
+  Eigen::Vector3d neighbour_mean(int32_t s, const Position& position) const {
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    for (const int32_t* n = neighbors_.begin(s); n != neighbors_.end(s); ++n) mean += points_[anchor_[*n]];
+    for (const int32_t* n = neighbors_.begin(s); n != neighbors_.end(s); ++n) mean += position(*n);
     return mean / static_cast<double>(neighbors_.end(s) - neighbors_.begin(s));
+  }
+  Eigen::Vector3d neighbour_mean(int32_t s) const {
+    return neighbour_mean(s, [&](int32_t n) -> const Eigen::Vector3d& { return points_[anchor_[n]]; });
   }
 
   // star_quality() `after` beats `before`: fewer folds, or as many but the
