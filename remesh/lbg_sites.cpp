@@ -77,6 +77,9 @@ Status check_connected(const Adjacency& adj) {
                       "); split it into connected components and remesh each one");
 }
 
+// Rounds of splitting curled cells (LbgOptions::min_flatness) at most.
+constexpr int kCurledPasses = 4;
+
 struct Context {
   const std::vector<Eigen::Vector3d>& positions;
   std::vector<double> density;
@@ -371,25 +374,13 @@ std::vector<Eigen::Vector3d> site_positions(const Context& ctx, const std::vecto
 
 // ---- LBG splitting ------------------------------------------------------
 
-// Splits cell k by the plane through its mass centroid across its principal
-// axis (one 2-means step, deterministic); each half's site is its vertex
-// nearest the half's centroid. The first half keeps label k, the second gets
-// the next free label. Needs a cell of two vertices or more.
-void split_cell(const Context& ctx, const CellLists& lists, int32_t k, VoronoiCells& cells) {
-  const int32_t* vertices = lists.begin(k);
-  const size_t count = lists.size(k);
-  const Eigen::Vector3d c = mass_centroid(ctx, vertices, count);
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  for (size_t i = 0; i < count; ++i) {
-    const Eigen::Vector3d d = ctx.positions[vertices[i]] - c;
-    covariance += ctx.density[vertices[i]] * d * d.transpose();
-  }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(covariance);
-  const Eigen::Vector3d axis = eigen.eigenvectors().col(2);  // largest eigenvalue last
-  std::vector<int32_t> low, high;
-  for (size_t i = 0; i < count; ++i)
-    (axis.dot(ctx.positions[vertices[i]] - c) < 0.0 ? low : high).push_back(vertices[i]);
-  if (low.empty() || high.empty()) {  // no spread (coincident points or no area): halve by index
+// Replaces cell k by the halves `low` and `high` of its vertices; each
+// half's site is its vertex nearest the half's mass centroid. The first half
+// keeps label k, the second gets the next free label. An empty half (no
+// spread) is made by halving in index order instead.
+void split_into(const Context& ctx, const int32_t* vertices, size_t count, int32_t k, std::vector<int32_t>& low,
+                std::vector<int32_t>& high, VoronoiCells& cells) {
+  if (low.empty() || high.empty()) {
     low.assign(vertices, vertices + count / 2);
     high.assign(vertices + count / 2, vertices + count);
   }
@@ -398,6 +389,38 @@ void split_cell(const Context& ctx, const CellLists& lists, int32_t k, VoronoiCe
   cells.sites.push_back(nearest_vertex(ctx, high.data(), high.size(), mass_centroid(ctx, high.data(), high.size())));
   // The halves seed the next assignment's search bounds.
   for (int32_t v : high) cells.cell_of[v] = new_label;
+}
+
+// The principal axis (largest eigenvalue) of density-weighted vectors about
+// their weighted mean `mean`.
+Eigen::Vector3d principal_axis(const Context& ctx, const int32_t* vertices, size_t count,
+                               const std::vector<Eigen::Vector3d>& vectors, const Eigen::Vector3d& mean) {
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (size_t i = 0; i < count; ++i) {
+    const Eigen::Vector3d d = vectors[vertices[i]] - mean;
+    covariance += ctx.density[vertices[i]] * d * d.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(covariance);
+  return eigen.eigenvectors().col(2);  // largest eigenvalue last
+}
+
+// Splits cell k in two by the sign of (vectors[v] - mean) along the vectors'
+// principal axis (one deterministic 2-means step). Needs a cell of two
+// vertices or more.
+void split_cell_by(const Context& ctx, const CellLists& lists, int32_t k, const std::vector<Eigen::Vector3d>& vectors,
+                   const Eigen::Vector3d& mean, VoronoiCells& cells) {
+  const int32_t* vertices = lists.begin(k);
+  const size_t count = lists.size(k);
+  const Eigen::Vector3d axis = principal_axis(ctx, vertices, count, vectors, mean);
+  std::vector<int32_t> low, high;
+  for (size_t i = 0; i < count; ++i) (axis.dot(vectors[vertices[i]] - mean) < 0.0 ? low : high).push_back(vertices[i]);
+  split_into(ctx, vertices, count, k, low, high, cells);
+}
+
+// LBG's split of cell k: by the plane through its mass centroid across its
+// principal axis.
+void split_cell(const Context& ctx, const CellLists& lists, int32_t k, VoronoiCells& cells) {
+  split_cell_by(ctx, lists, k, ctx.positions, mass_centroid(ctx, lists.begin(k), lists.size(k)), cells);
 }
 
 // One LBG split: every cell, or when doubling would pass `target` only the
@@ -467,6 +490,55 @@ void relax(const Context& ctx, int max_iterations, double min_decrease, VoronoiC
   round.site_energy = total_energy(ctx.positions, ctx.density, cells);
 }
 
+// ---- Curled cells (ours, not in the paper) -----------------------------
+
+// Per vertex: its area-weighted normal, the vector area of its dual cell
+// (a third of each triangle's) over its density (the dual cell's area), so
+// its length is 1 on flat ground and less where the triangles around it turn.
+std::vector<Eigen::Vector3d> dual_normals(const TriangleMesh& mesh, const std::vector<double>& density) {
+  std::vector<Eigen::Vector3d> normal(mesh.positions.size(), Eigen::Vector3d::Zero());
+  for (const auto& t : mesh.triangles) {
+    const Eigen::Vector3d& a = mesh.positions[t[0]];
+    const Eigen::Vector3d third = (mesh.positions[t[1]] - a).cross(mesh.positions[t[2]] - a) / 6.0;
+    for (int32_t v : t) normal[v] += third;
+  }
+  for (size_t v = 0; v < normal.size(); ++v) normal[v] = density[v] > 0.0 ? Eigen::Vector3d(normal[v] / density[v])
+                                                                          : Eigen::Vector3d::Zero();
+  return normal;
+}
+
+// Splits every cell whose vector area is less than `min_flatness` times its
+// area, across its normals (the two halves face apart), at most `budget` of
+// them, the most curled first. Returns the number split.
+size_t split_curled(const Context& ctx, const std::vector<Eigen::Vector3d>& normal, double min_flatness,
+                    size_t budget, VoronoiCells& cells) {
+  const size_t num_cells = cells.sites.size();
+  const CellLists lists = cell_lists(num_cells, cells.cell_of);
+  std::vector<Eigen::Vector3d> mean(num_cells, Eigen::Vector3d::Zero());
+  std::vector<double> flatness(num_cells, 1.0);
+  std::vector<int32_t> chosen;
+  for (size_t k = 0; k < num_cells; ++k) {
+    if (lists.size(k) < 2) continue;
+    double area = 0.0;
+    for (size_t i = 0; i < lists.size(k); ++i) {
+      const int32_t v = lists.begin(k)[i];
+      mean[k] += ctx.density[v] * normal[v];
+      area += ctx.density[v];
+    }
+    if (!(area > 0.0)) continue;
+    mean[k] /= area;
+    flatness[k] = mean[k].norm();
+    if (flatness[k] < min_flatness) chosen.push_back(static_cast<int32_t>(k));
+  }
+  if (chosen.size() > budget) {
+    std::stable_sort(chosen.begin(), chosen.end(), [&](int32_t a, int32_t b) { return flatness[a] < flatness[b]; });
+    chosen.resize(budget);
+    std::sort(chosen.begin(), chosen.end());
+  }
+  for (int32_t k : chosen) split_cell_by(ctx, lists, k, normal, mean[k], cells);
+  return chosen.size();
+}
+
 }  // namespace
 
 double voronoi_energy(const TriangleMesh& mesh, const std::vector<double>& density, const VoronoiCells& cells) {
@@ -498,6 +570,25 @@ StatusOr<VoronoiCells> lbg_sites(const TriangleMesh& mesh, const LbgOptions& opt
     relax(ctx, options.max_lloyd_iterations, options.min_relative_decrease, cells, round);
     round.sites = cells.sites.size();
     if (report) report->rounds.push_back(std::move(round));
+  }
+
+  // Cells that wrap around a thin part (a tube, the rim of a flap) make base
+  // triangles that cut across it, which no later level recovers from.
+  if (options.min_flatness > 0.0) {
+    const std::vector<Eigen::Vector3d> normal = dual_normals(mesh, ctx.density);
+    const size_t limit = std::min(n, options.target_sites + options.target_sites / 4);
+    for (int pass = 0; pass < kCurledPasses && cells.sites.size() < limit; ++pass) {
+      LbgReport::Round round;
+      const size_t split = split_curled(ctx, normal, options.min_flatness, limit - cells.sites.size(), cells);
+      if (split == 0) break;
+      // The sites' own Voronoi cells, without Lloyd: on a thin tube Lloyd
+      // prefers cells that are slices around it (they have the lower energy)
+      // and undoes the split.
+      relax(ctx, 0, options.min_relative_decrease, cells, round);
+      round.sites = cells.sites.size();
+      round.curled_splits = split;
+      if (report) report->rounds.push_back(std::move(round));
+    }
   }
   return cells;
 }

@@ -25,6 +25,14 @@ struct LbgOptions {
   // stops after 174 steps over all rounds instead of 530, for a final energy
   // 0.7% higher. 0 runs every round to a fixed point or the step budget.
   double min_relative_decrease = 1e-3;
+  // Ours, not the paper's: once LBG has its target, a cell whose vector area
+  // (the sum of its triangles' area-weighted normals) is less than this
+  // fraction of its area is split across its normals (no Lloyd after), in up
+  // to 4 rounds, adding at most target_sites / 4 sites. Such a cell wraps
+  // around a thin part (a tube, a flap's rim), and its base triangles would
+  // cut through it. On a cap of a sphere spanning 2θ the fraction is
+  // (1 + cos θ) / 2; around a tube, half the circumference gives 2/π. 0: off.
+  double min_flatness = 0.0;
   // No effect: nothing is random (splits follow the principal axis). Kept so
   // a randomized variant would not change the options' shape.
   uint64_t seed = 1;
@@ -45,6 +53,7 @@ struct LbgReport {
     std::vector<double> energy;
     double site_energy = 0.0;        // Eq. 3 of the round's result, with its sites as generators
     size_t reassigned_vertices = 0;  // vertices moved by the connectivity repair, summed over the round
+    size_t curled_splits = 0;        // cells split for LbgOptions::min_flatness (0 in LBG's own rounds)
   };
   std::vector<Round> rounds;
 };
@@ -64,6 +73,8 @@ struct LbgReport {
 //    cell they share most edges with. Every cell holds its site, so none is
 //    empty.
 //  - Deterministic: the result depends only on the input, not on threads.
+//  - With options.min_flatness, cells that wrap around thin parts are split
+//    afterwards, so there may be up to target_sites / 4 more sites.
 // `mesh` must be one edge-connected component of triangles with every vertex
 // used (split components first); anything else is an error, as is a target
 // outside 1 ..= vertex count.

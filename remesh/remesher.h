@@ -46,6 +46,7 @@ struct RemeshReport {
   size_t oversampled_vertices = 0;
   size_t base_vertices = 0;       // including promoted ones
   size_t promoted_vertices = 0;   // non-sites the base mesh had to keep (see build_base_mesh)
+  size_t curled_sites = 0;        // sites added to split cells that wrap around thin parts (kMinCellFlatness)
   double seconds_oversample = 0.0, seconds_sites = 0.0, seconds_base = 0.0, seconds_refine = 0.0;
   std::vector<RefineLevelReport> levels;
 };

@@ -301,6 +301,78 @@ TEST(LbgSites, CellsStayConnectedAcrossCloseSheets) {
   }
 }
 
+// A ring (circle of radius 1) of tube of radius 0.25 except for a short
+// waist of radius 0.015; n x m vertices, closed, genus 1.
+TriangleMesh waisted_ring(int n, int m) {
+  TriangleMesh mesh;
+  const double pi = std::acos(-1.0);
+  for (int i = 0; i < n; ++i) {
+    const double u = 2.0 * pi * i / n;
+    const double r = 0.25 - 0.235 * std::exp(-(u - pi) * (u - pi) / 0.1);
+    for (int j = 0; j < m; ++j) {
+      const double v = 2.0 * pi * j / m;
+      const double rho = 1.0 + r * std::cos(v);
+      mesh.positions.emplace_back(rho * std::cos(u), rho * std::sin(u), r * std::sin(v));
+    }
+  }
+  auto id = [n, m](int i, int j) { return (i % n) * m + (j % m); };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < m; ++j) {
+      mesh.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      mesh.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return mesh;
+}
+
+// Per cell: the length of its vector area (each triangle's split in thirds
+// among its corners' cells) over its area; 1 for a flat cell.
+std::vector<double> cell_flatness(const TriangleMesh& m, const VoronoiCells& c) {
+  std::vector<Eigen::Vector3d> vector_area(c.sites.size(), Eigen::Vector3d::Zero());
+  std::vector<double> area(c.sites.size(), 0.0);
+  for (const auto& t : m.triangles) {
+    const Eigen::Vector3d a = (m.positions[t[1]] - m.positions[t[0]]).cross(m.positions[t[2]] - m.positions[t[0]]) / 6.0;
+    for (int32_t v : t) {
+      vector_area[c.cell_of[v]] += a;
+      area[c.cell_of[v]] += a.norm();
+    }
+  }
+  std::vector<double> out;
+  for (size_t k = 0; k < area.size(); ++k) out.push_back(vector_area[k].norm() / area[k]);
+  return out;
+}
+
+TEST(LbgSites, SplitsCellsThatWrapAroundAThinWaist) {
+  const TriangleMesh ring = waisted_ring(400, 24);
+  constexpr size_t kTarget = 30;
+  const std::vector<double> plain = cell_flatness(ring, run(ring, kTarget));
+  const double plain_worst = *std::min_element(plain.begin(), plain.end());
+  EXPECT_LT(plain_worst, 0.5) << "without the option the cells at the waist should wrap around it";
+
+  LbgOptions options;
+  options.target_sites = kTarget;
+  options.min_flatness = 0.6;
+  LbgReport report;
+  auto cells = lbg_sites(ring, options, &report);
+  ASSERT_TRUE(cells.ok()) << cells.status().message();
+  const size_t count = cells->sites.size();
+  EXPECT_GT(count, kTarget);
+  EXPECT_LE(count, kTarget + kTarget / 4);
+  EXPECT_TRUE(valid_cells(ring, cells.value(), count));
+  ASSERT_FALSE(report.rounds.empty());
+  EXPECT_GT(report.rounds.back().curled_splits, 0u);
+  const std::vector<double> flatness = cell_flatness(ring, cells.value());
+  EXPECT_GE(*std::min_element(flatness.begin(), flatness.end()), 0.6);
+
+  // Where nothing is curled, the option changes nothing.
+  const TriangleMesh sphere = test::icosphere(4, 1.0);
+  options.target_sites = 100;
+  auto round = lbg_sites(sphere, options);
+  ASSERT_TRUE(round.ok());
+  const VoronoiCells without = run(sphere, 100);
+  EXPECT_EQ(round->sites, without.sites);
+  EXPECT_EQ(round->cell_of, without.cell_of);
+}
+
 TEST(LbgSites, SmallExtremes) {
   const TriangleMesh cube = test::unit_cube();
   for (size_t target = 1; target <= 8; ++target) {

@@ -99,6 +99,7 @@ Status run_remesh(const RemeshCliOptions& o) {
         .field("oversampled_vertices", report.oversampled_vertices)
         .field("base_vertices", report.base_vertices)
         .field("promoted_vertices", report.promoted_vertices)
+        .field("curled_sites", report.curled_sites)
         .field("uniform", options.uniform)
         .field("threshold", options.threshold)
         .field("tolerance_db", options.tolerance_db)

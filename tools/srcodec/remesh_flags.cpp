@@ -13,7 +13,7 @@ void add_remesh_flags(CLI::App* cmd, RemeshFlags& f) {
                         ->check(CLI::Range(0, 12))
                         ->capture_default_str();
   cmd->add_option("--base-vertices", f.base_vertices,
-                  "Base mesh vertices (default: from the input size and levels, 100..4000; see README)");
+                  "Base mesh vertices (default: from the input size and levels, 100..4000; up to a quarter more where cells wrap around thin parts; see README)");
   auto* threshold = cmd->add_option("--threshold", f.threshold,
                                     "Adaptive: split a triangle only when each corner's Voronoi cell holds more "
                                     "than this many (oversampled) input vertices (Eq. 5)");
