@@ -558,7 +558,7 @@ class Refiner {
     const Adjacency members = cells(cell_of, sites);
     for (size_t s = 0; s < sites; ++s)
       if (members.offsets[s + 1] - members.offsets[s] == 1) ++lr.empty_cells;
-    untangle(lr);
+    untangle(level, lr);
     for (const auto& tri : triangles_) lr.folded_triangles += folded(tri, -1, -1);
     lr.pleats = pleats().size();
     for (const auto& level_tris : coarse_triangles_)
@@ -569,7 +569,7 @@ class Refiner {
   // Lloyd cannot undo every fold the initial placement made, nor the pleats:
   // three repairs, in rounds while they leave fewer folds and pleats (a
   // repair can free the sites another needs).
-  void untangle(RefineLevelReport& lr) {
+  void untangle(int32_t level, RefineLevelReport& lr) {
     constexpr int kRounds = 4;
     size_t before = folded_triangles().size() + pleats().size();
     for (int round = 0; round < kRounds && before > 0; ++round) {
@@ -580,6 +580,12 @@ class Refiner {
       if (after >= before) break;
       before = after;
     }
+    if (level == 0 || folded_triangles().empty()) return;
+    for (int rings : {0, 1, 2, 4, 8, 16})
+      if (!for_each_tangle_patch(rings, [&](const std::vector<int32_t>& patch) {
+            lr.midpoint_resets += midpoint_patch(patch, level);
+          }))
+        return;
   }
 
   // A site whose cell sits on the wrong side of a neighbour moves within
@@ -707,58 +713,62 @@ class Refiner {
   // pleats; the patches grow ring by ring while any remain. Boundary sites
   // move along the input's boundary.
   void smooth_tangles(RefineLevelReport& lr) {
-    const size_t sites = neighbors_.size();
-    std::vector<char> in;
-    std::vector<int32_t> frontier, next, patch;
-    for (int rings : {1, 2, 4, 8}) {
-      std::vector<std::array<int32_t, 3>> folds = folded_triangles();
-      for (const auto& [t, u] : pleats()) {
-        folds.push_back(triangles_[t]);
-        folds.push_back(triangles_[u]);
-      }
-      if (folds.empty()) return;
-      in.assign(sites, 0);
-      frontier.clear();
-      for (const auto& tri : folds)
-        for (int32_t s : tri)
-          if (!in[s]) {
-            in[s] = 1;
-            frontier.push_back(s);
-          }
-      for (int r = 0; r < rings; ++r) {
-        next.clear();
-        for (int32_t s : frontier)
-          for (const int32_t* n = neighbors_.begin(s); n != neighbors_.end(s); ++n)
-            if (!in[*n]) {
-              in[*n] = 1;
-              next.push_back(*n);
-            }
-        frontier.swap(next);
-      }
-      // Each connected part of the marked sites is a patch (2: taken).
-      for (size_t start = 0; start < sites; ++start) {
-        if (in[start] != 1) continue;
-        patch.assign(1, static_cast<int32_t>(start));
-        in[start] = 2;
-        for (size_t j = 0; j < patch.size(); ++j)
-          for (const int32_t* n = neighbors_.begin(patch[j]); n != neighbors_.end(patch[j]); ++n)
-            if (in[*n] == 1) {
-              in[*n] = 2;
-              patch.push_back(*n);
-            }
-        std::sort(patch.begin(), patch.end());
-        lr.smoothed += smooth_patch(patch);
-      }
-    }
+    for (int rings : {1, 2, 4, 8})
+      if (!for_each_tangle_patch(rings, [&](const std::vector<int32_t>& patch) { lr.smoothed += smooth_patch(patch); }))
+        return;
   }
 
-  // smooth_tangles for one patch (sorted sites); returns the sites moved.
-  // Smoothing far enough untangles the patch but can fold triangles at its
-  // rim, where the sites that stay put are denser or sparser than the mean:
-  // the patch keeps the step count, out of a few, that leaves fewest folds,
-  // then fewest pleats.
-  size_t smooth_patch(const std::vector<int32_t>& patch) {
-    constexpr std::array<int, 7> kCheckpoints{1, 2, 3, 5, 8, 13, 20};
+  // Hands `repair` the patches around the current folds (on every level)
+  // and pleats: the sites within `rings` rings of one, each connected part
+  // of them a patch (sorted sites). False when there is nothing to repair.
+  template <class Repair>
+  bool for_each_tangle_patch(int rings, Repair&& repair) {
+    const size_t sites = neighbors_.size();
+    std::vector<std::array<int32_t, 3>> folds = folded_triangles();
+    for (const auto& [t, u] : pleats()) {
+      folds.push_back(triangles_[t]);
+      folds.push_back(triangles_[u]);
+    }
+    if (folds.empty()) return false;
+    std::vector<char> in(sites, 0);
+    std::vector<int32_t> frontier, next, patch;
+    for (const auto& tri : folds)
+      for (int32_t s : tri)
+        if (!in[s]) {
+          in[s] = 1;
+          frontier.push_back(s);
+        }
+    for (int r = 0; r < rings; ++r) {
+      next.clear();
+      for (int32_t s : frontier)
+        for (const int32_t* n = neighbors_.begin(s); n != neighbors_.end(s); ++n)
+          if (!in[*n]) {
+            in[*n] = 1;
+            next.push_back(*n);
+          }
+      frontier.swap(next);
+    }
+    // Each connected part of the marked sites is a patch (2: taken).
+    for (size_t start = 0; start < sites; ++start) {
+      if (in[start] != 1) continue;
+      patch.assign(1, static_cast<int32_t>(start));
+      in[start] = 2;
+      for (size_t j = 0; j < patch.size(); ++j)
+        for (const int32_t* n = neighbors_.begin(patch[j]); n != neighbors_.end(patch[j]); ++n)
+          if (in[*n] == 1) {
+            in[*n] = 2;
+            patch.push_back(*n);
+          }
+      std::sort(patch.begin(), patch.end());
+      repair(patch);
+    }
+    return true;
+  }
+
+  // Counts, for a patch (sorted sites), the folded triangles around it on
+  // every level and the pleats in this level's mesh around it: returns a
+  // callable that counts them for the sites' current positions.
+  auto tangles_around(const std::vector<int32_t>& patch) const {
     // The triangles around the patch, per level (this level's mesh last).
     std::vector<std::vector<int32_t>> around(coarse_triangles_.size() + 1);
     auto gather = [&](const Adjacency& adjacency, std::vector<int32_t>& ids) {
@@ -768,8 +778,7 @@ class Refiner {
     };
     for (size_t k = 0; k < coarse_triangles_.size(); ++k) gather(coarse_around_[k], around[k]);
     gather(around_, around.back());
-    // (folded triangles on every level, pleats in this level's mesh)
-    auto folds = [&] {
+    return [this, around = std::move(around)] {
       std::pair<size_t, size_t> count{0, 0};
       for (size_t k = 0; k < around.size(); ++k) {
         const auto& tris = k < coarse_triangles_.size() ? coarse_triangles_[k] : triangles_;
@@ -783,6 +792,44 @@ class Refiner {
         }
       return count;
     };
+  }
+
+  // The last resort, when smoothing leaves folds: this level's new sites in
+  // a patch go back to their parent edges' midpoints, off the input. A
+  // triangle split at its edges' midpoints faces the way it did, so where
+  // the coarser level is unfolded, a patch grown far enough unfolds this
+  // one, at the price of its detail. Kept only when the patch has fewer
+  // folds, or as many and fewer pleats. Returns the sites moved.
+  size_t midpoint_patch(const std::vector<int32_t>& patch, int32_t level) {
+    const auto tangles = tangles_around(patch);
+    const std::pair<size_t, size_t> before = tangles();
+    const size_t points_before = points_.size();
+    std::vector<int32_t> moved, old;
+    for (int32_t s : patch) {
+      if (h_.vertex_level(s) != level) continue;
+      const auto edge = h_.parent_edge(s);
+      const int32_t a = anchor_[edge[0]], b = anchor_[edge[1]];
+      Eigen::Vector3d normal = normals_[a] + normals_[b];
+      if (normal.norm() > 0.0) normal.normalize();
+      moved.push_back(s);
+      old.push_back(anchor_[s]);
+      move_site(s, add_point(0.5 * (points_[a] + points_[b]), h_.nominal_param(s), normal, site_on_boundary_[s]));
+    }
+    if (moved.empty()) return 0;
+    if (tangles() < before) return moved.size();
+    for (size_t j = 0; j < moved.size(); ++j) move_site(moved[j], old[j]);
+    while (points_.size() > points_before) drop_last_point();
+    return 0;
+  }
+
+  // smooth_tangles for one patch (sorted sites); returns the sites moved.
+  // Smoothing far enough untangles the patch but can fold triangles at its
+  // rim, where the sites that stay put are denser or sparser than the mean:
+  // the patch keeps the step count, out of a few, that leaves fewest folds,
+  // then fewest pleats.
+  size_t smooth_patch(const std::vector<int32_t>& patch) {
+    constexpr std::array<int, 7> kCheckpoints{1, 2, 3, 5, 8, 13, 20};
+    const auto folds = tangles_around(patch);
     // Interior sites move to their neighbours' mean, boundary sites to the
     // mean of their two neighbours along the boundary, put back on the
     // input's boundary (rim: those two neighbours).

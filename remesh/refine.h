@@ -69,6 +69,9 @@ struct RefineLevelReport {
   // Sites moved by the Laplacian smoothing of patches around folds that
   // single moves left (onto the input surface, between its vertices).
   size_t smoothed = 0;
+  // Sites of this level put back at their parent edges' midpoints, off the
+  // input, where nothing else undid the folds around them.
+  size_t midpoint_resets = 0;
   double seconds = 0.0;
 };
 

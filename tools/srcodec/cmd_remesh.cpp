@@ -79,6 +79,7 @@ Status run_remesh(const RemeshCliOptions& o) {
             .field("surface_vertices", lr.surface_vertices)
             .field("off_input_moves", lr.off_input_moves)
             .field("smoothed", lr.smoothed)
+            .field("midpoint_resets", lr.midpoint_resets)
             .field("empty_cells", lr.empty_cells);
       }
       level_json.push_back(j);
