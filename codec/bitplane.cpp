@@ -38,9 +38,15 @@
 #include "codec/bitplane.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cassert>
 #include <cmath>
+#include <condition_variable>
+#include <memory>
+#include <mutex>
 #include <string>
+#include <system_error>
+#include <thread>
 
 #include "codec/range_coder.h"
 
@@ -235,25 +241,55 @@ struct DecoderIo {
   bool ok() const { return dec.ok(); }
 };
 
+// What decode_level reads and writes besides the level's own node state.
+// The sequential decode points everything into the CoderState; the finest
+// level's thread of the pipelined decode has private copies (see
+// decode_pipelined), so that no byte one thread writes is read or written by
+// the other.
+struct LevelContext {
+  ModelSet* models;
+  uint64_t* reached;            // read for the level's nodes, set for their children
+  const int8_t* parent_sig;     // sig_plane of the parents
+  const uint8_t* parent_flags;  // flags of the parents (only kNegative is read)
+};
+
+// The coarser thread's record of what the finest level's thread needs from
+// it: nodes that became significant (sign in bit 31) and nodes whose D became
+// true, in decode order. Each node appears at most once in each list.
+struct EventLog {
+  uint32_t* significant = nullptr;
+  uint32_t* descendants = nullptr;
+  size_t significant_count = 0;
+  size_t descendants_count = 0;
+};
+
 // Decodes every reached node of `level` at plane p from `dec`: CoderState::
 // code_node's group, written out on a register-held decoder (Cursor) while a
 // whole group's bytes are there (none of its symbols can then depend on
-// missing bytes), and code_node itself, with its checks, near the end.
+// missing bytes), and a checked decode of the same group near the end.
 // kLeaves: no node of the level has children (the finest level, most of the
 // nodes), so no group has a D symbol: a shorter loop that keeps more in registers.
+// `log`: where to record the level's events (nullptr: nowhere); only for
+// levels with children, the only ones a finer level reads. `mark_children`:
+// false when nobody reads the reached bits of the level's children (the
+// level just above the pipelined decode's last one, whose thread keeps its
+// own from the log); the fast path then skips them.
 template <bool kLeaves>
-bool decode_level(CoderState& state, int p, int level, ArithmeticDecoder& dec, size_t* symbols) {
+bool decode_level(CoderState& state, const LevelContext& ctx, int p, int level, ArithmeticDecoder& dec,
+                  size_t* symbols, EventLog* log, bool mark_children = true) {
   constexpr size_t kGroupSymbols = 3;
   const int32_t* const parent = state.forest.parent.data();
   const uint16_t* const model_set = state.index.model_set.data();
   const uint32_t* const child_begin = state.index.child_begin.data();
   const uint32_t* const children = state.index.children.data();
-  ModelSet* const models = state.models.data();
+  ModelSet* const models = ctx.models;
   uint8_t* const flags = state.flags.data();
   int8_t* const sig_plane = state.sig_plane.data();
+  const int8_t* const parent_sig = ctx.parent_sig;
+  const uint8_t* const parent_flags = ctx.parent_flags;
   int8_t* const low_plane = state.low_plane.data();
   uint32_t* const magnitude = state.magnitude.data();
-  uint64_t* const reached = state.reached.data();
+  uint64_t* const reached = ctx.reached;
   const int8_t plane = static_cast<int8_t>(p);
   const uint32_t plane_bit = uint32_t{1} << p;
 
@@ -275,6 +311,17 @@ bool decode_level(CoderState& state, int p, int level, ArithmeticDecoder& dec, s
     bits &= bits - 1;
     return n;
   };
+  // The contexts of a node's significance and sign symbols.
+  const auto parent_contexts = [&](uint32_t n, int* bucket, int* sign_ctx) {
+    const int32_t up = parent[n];
+    *bucket = 0;
+    *sign_ctx = 0;
+    if (up >= 0) {
+      const int psp = parent_sig[up];
+      *bucket = psp < 0 ? 1 : 2 + std::min(psp - p, 2);
+      *sign_ctx = psp < 0 ? 0 : ((parent_flags[up] & kNegative) ? 2 : 1);
+    }
+  };
   bits = reached[w] & (~uint64_t{0} << (begin & 63));
   if (w == (end - 1) >> 6 && (end & 63) != 0) bits &= ~(~uint64_t{0} << (end & 63));
   uint32_t n = next_node();
@@ -293,13 +340,8 @@ bool decode_level(CoderState& state, int p, int level, ArithmeticDecoder& dec, s
       low_plane[n] = plane;
       ++count;
     } else {
-      const int32_t up = parent[n];
-      int bucket = 0, sign_ctx = 0;
-      if (up >= 0) {
-        const int psp = sig_plane[up];
-        bucket = psp < 0 ? 1 : 2 + std::min(psp - p, 2);
-        sign_ctx = psp < 0 ? 0 : ((flags[up] & kNegative) ? 2 : 1);
-      }
+      int bucket, sign_ctx;
+      parent_contexts(n, &bucket, &sign_ctx);
       significant = rc.decode(m.sig[bucket * 2 + unseen]);
       ++count;
       if (significant) {
@@ -308,6 +350,8 @@ bool decode_level(CoderState& state, int p, int level, ArithmeticDecoder& dec, s
         sig_plane[n] = plane;
         low_plane[n] = plane;
         magnitude[n] = plane_bit;
+        if (!kLeaves && log != nullptr)
+          log->significant[log->significant_count++] = n | (f & kNegative ? uint32_t{1} << 31 : 0);
       }
     }
     if (!kLeaves && (f & (kDescendants | kHasChildren)) == kHasChildren) {
@@ -315,10 +359,12 @@ bool decode_level(CoderState& state, int p, int level, ArithmeticDecoder& dec, s
       ++count;
       if (rc.decode(m.desc[own * 2 + unseen])) {
         f |= kDescendants;
-        for (uint32_t c = child_begin[n]; c < child_begin[n + 1]; ++c) {
-          const uint32_t child = children[c];
-          reached[child >> 6] |= uint64_t{1} << (child & 63);
-        }
+        if (log != nullptr) log->descendants[log->descendants_count++] = n;
+        if (mark_children)
+          for (uint32_t c = child_begin[n]; c < child_begin[n + 1]; ++c) {
+            const uint32_t child = children[c];
+            reached[child >> 6] |= uint64_t{1} << (child & 63);
+          }
       }
     }
     flags[n] = f | kSeen;
@@ -327,9 +373,48 @@ bool decode_level(CoderState& state, int p, int level, ArithmeticDecoder& dec, s
   *symbols += count;
   if (fast) return true;
   // Near the end of the segment: the checked path for the rest.
-  DecoderIo checked{dec};
-  for (; n != end; n = next_node())
-    if (!state.code_node(n, p, checked, symbols)) return false;
+  if constexpr (kLeaves) {
+    // code_node's group for a node without children, with the context's parents.
+    for (; n != end; n = next_node()) {
+      ModelSet& m = models[model_set[n]];
+      const int sp = sig_plane[n];
+      const uint8_t f = flags[n];
+      int refine = 0, significant = 0, negative = 0;
+      if (sp >= 0) {
+        refine = dec.decode(m.refine);
+      } else {
+        int bucket, sign_ctx;
+        parent_contexts(n, &bucket, &sign_ctx);
+        significant = dec.decode(m.sig[bucket * 2 + ((f & kSeen) ? 0 : 1)]);
+        if (significant) negative = dec.decode(m.sign[sign_ctx]);
+      }
+      if (!dec.ok()) return false;
+      *symbols += 1 + static_cast<size_t>(significant);
+      if (sp >= 0) {
+        magnitude[n] |= static_cast<uint32_t>(refine) << p;
+      } else if (significant) {
+        sig_plane[n] = plane;
+        magnitude[n] = plane_bit;
+      }
+      if (sp >= 0 || significant) low_plane[n] = plane;
+      flags[n] = static_cast<uint8_t>(f | kSeen | (negative ? kNegative : 0));
+    }
+  } else {
+    // Only the coarser levels get here, which always use the CoderState's own
+    // arrays: code_node reads and writes those.
+    assert(ctx.models == state.models.data() && ctx.reached == state.reached.data());
+    DecoderIo checked{dec};
+    for (; n != end; n = next_node()) {
+      const int8_t sp_before = sig_plane[n];
+      const uint8_t f_before = flags[n];
+      if (!state.code_node(n, p, checked, symbols)) return false;
+      if (log != nullptr) {
+        if (sp_before < 0 && sig_plane[n] >= 0)
+          log->significant[log->significant_count++] = n | (flags[n] & kNegative ? uint32_t{1} << 31 : 0);
+        if (!(f_before & kDescendants) && (flags[n] & kDescendants)) log->descendants[log->descendants_count++] = n;
+      }
+    }
+  }
   return true;
 }
 
@@ -429,22 +514,235 @@ Status validate_segments(const std::vector<BitplaneSegmentView>& segments, int t
 
 std::vector<double> reconstruct(const CoderState& state) {
   const size_t n = state.flags.size();
-  double half_step[kMaxBitplane + 1];  // 2^(plane - 1): the middle of the unknown low bits
+  // 2^(plane - 1): the middle of the unknown low bits. A node never found
+  // significant has magnitude 0, low_plane -1 (entry 31: 0) and no sign, so
+  // it gives 0 without a branch, which would be mispredicted on every other
+  // node of a partly decoded level.
+  static_assert(kMaxBitplane < 31, "entry 31 is the insignificant nodes'");
+  double half_step[32];
   for (int p = 0; p <= kMaxBitplane; ++p) half_step[p] = std::ldexp(1.0, p - 1);
-  std::vector<double> values(n, 0.0);
+  for (int p = kMaxBitplane + 1; p < 32; ++p) half_step[p] = 0.0;
+  std::vector<double> values(n);
+  const uint32_t* const magnitude = state.magnitude.data();
+  const int8_t* const low_plane = state.low_plane.data();
+  const uint8_t* const flags = state.flags.data();
   for (size_t i = 0; i < n; ++i) {
-    if (state.sig_plane[i] < 0) continue;
-    const double v = state.magnitude[i] + half_step[state.low_plane[i]];
-    values[i] = (state.flags[i] & kNegative) ? -v : v;
+    const double v = magnitude[i] + half_step[low_plane[i] & 31];
+    values[i] = (flags[i] & kNegative) ? -v : v;
   }
   return values;
 }
 
 }  // namespace
 
+namespace {
+
+bool has_children(const ForestIndex& index, int level) {
+  return index.child_begin[index.level_begin[level]] != index.child_begin[index.level_begin[level + 1]];
+}
+
+LevelContext own_context(CoderState& state) {
+  return {state.models.data(), state.reached.data(), state.sig_plane.data(), state.flags.data()};
+}
+
+// Decodes (p, l) from `segment` with the CoderState's own context; false when
+// the segment ended before the level did.
+bool decode_segment(CoderState& state, const LevelContext& ctx, const BitplaneSegmentView& segment, int p, int l,
+                    size_t* symbols, EventLog* log, bool mark_children = true) {
+  ArithmeticDecoder dec(segment.data, segment.size);
+  return has_children(state.index, l) ? decode_level<false>(state, ctx, p, l, dec, symbols, log, mark_children)
+                                      : decode_level<true>(state, ctx, p, l, dec, symbols, nullptr);
+}
+
+// Per (plane, level), the index of its segment in `segments`, or -1. The
+// segments are in strictly increasing stream order (validate_segments), so
+// this finds what the sequential scan of the list finds.
+std::vector<int> segment_table(const std::vector<BitplaneSegmentView>& segments, int top_plane, int levels) {
+  std::vector<int> table(static_cast<size_t>(top_plane + 1) * static_cast<size_t>(levels), -1);
+  for (size_t i = 0; i < segments.size(); ++i)
+    if (segments[i].level <= levels)
+      table[static_cast<size_t>(top_plane - segments[i].plane) * levels + (segments[i].level - 1)] =
+          static_cast<int>(i);
+  return table;
+}
+
+void decode_sequential(CoderState& state, int top_plane, const std::vector<BitplaneSegmentView>& segments,
+                       int levels, BitplaneDecodeStats& st) {
+  const std::vector<int> table = segment_table(segments, top_plane, levels);
+  const LevelContext ctx = own_context(state);
+  bool stopped = false;
+  for (int p = top_plane; p >= 0 && !stopped; --p) {
+    for (int l = 1; l <= levels && !stopped; ++l) {
+      const int k = table[static_cast<size_t>(top_plane - p) * levels + (l - 1)];
+      // A missing segment ends decoding as a short one does.
+      stopped = k < 0 || !decode_segment(state, ctx, segments[k], p, l, &st.symbols, nullptr);
+      if (stopped) {
+        st.stop_plane = p;
+        st.stop_level = l;
+      } else {
+        ++st.segments_decoded;
+      }
+    }
+    if (!stopped) st.last_complete_plane = p;
+  }
+  st.complete = !stopped;
+  if (st.complete) st.last_complete_plane = 0;
+}
+
+// The pipelined decode: this thread decodes levels 1 .. L-1 plane by plane
+// (the coarser thread), a second thread decodes level L (the forest's last,
+// so its nodes have no children and nothing coarser reads their state) one
+// plane behind. Level L at plane p reads only
+//  - its own nodes' state and models (only the second thread writes them:
+//    it gets its own copy of the models, the CoderState's arrays are written
+//    per node, so the threads write different bytes);
+//  - the parents' significance plane and sign as of plane p, and which of
+//    its nodes are reached as of plane p: the coarser thread may already be
+//    changing those at plane p - 1, so it logs its events (EventLog) and
+//    publishes per plane how far the log goes; the second thread replays
+//    them into private copies before decoding the plane.
+// Outcomes equal the sequential decode's, stats included, except when level
+// L stops at plane p (a short or missing segment) after the coarser thread
+// has already decoded part of plane p - 1, which the sequential decode would
+// never have touched: returns false then (only corrupt input: in a cut file
+// the short segment is the last one), and the caller decodes again sequentially.
+bool decode_pipelined(CoderState& state, int top_plane, const std::vector<BitplaneSegmentView>& segments, int levels,
+                      BitplaneDecodeStats& st) {
+  const ForestIndex& index = state.index;
+  const int L = levels;
+  const uint32_t coarse_nodes = index.level_begin[L];
+  const std::vector<int> table = segment_table(segments, top_plane, levels);
+  // Everything the second thread uses is allocated here, so that it cannot fail.
+  std::unique_ptr<uint32_t[]> significant(new uint32_t[coarse_nodes + 1]);
+  std::unique_ptr<uint32_t[]> descendants(new uint32_t[coarse_nodes + 1]);
+  EventLog log{significant.get(), descendants.get(), 0, 0};
+  std::vector<size_t> significant_end(static_cast<size_t>(top_plane + 1)), descendants_end(significant_end.size());
+  std::vector<ModelSet> fine_models(state.models.size());
+  std::vector<uint64_t> fine_reached = state.reached;  // the roots; D events add the rest
+  std::vector<int8_t> fine_parent_sig(coarse_nodes, -1);
+  std::vector<uint8_t> fine_parent_flags(coarse_nodes, 0);
+  const LevelContext fine_ctx{fine_models.data(), fine_reached.data(), fine_parent_sig.data(),
+                              fine_parent_flags.data()};
+
+  std::mutex mutex;
+  std::condition_variable published;
+  int done_plane = top_plane + 1;  // the coarser thread finished planes >= done_plane
+  bool coarse_finished = false;    // ... and will finish no more
+  std::atomic<int> fine_stop{-1};  // plane where level L stopped, -1: not (yet)
+  size_t fine_symbols = 0, fine_segments = 0;
+
+  const auto fine = [&] {
+    size_t sig_read = 0, desc_read = 0;
+    for (int p = top_plane; p >= 0; --p) {
+      size_t sig_end, desc_end;
+      {
+        std::unique_lock<std::mutex> lock(mutex);
+        published.wait(lock, [&] { return done_plane <= p || coarse_finished; });
+        if (done_plane > p) return;  // the coarser levels stopped in plane p
+        sig_end = significant_end[static_cast<size_t>(top_plane - p)];
+        desc_end = descendants_end[static_cast<size_t>(top_plane - p)];
+      }
+      for (; sig_read < sig_end; ++sig_read) {
+        const uint32_t e = significant[sig_read], u = e & ~(uint32_t{1} << 31);
+        fine_parent_sig[u] = static_cast<int8_t>(p);
+        fine_parent_flags[u] = (e >> 31) ? kNegative : 0;
+      }
+      for (; desc_read < desc_end; ++desc_read) {
+        const uint32_t u = descendants[desc_read];
+        for (uint32_t c = index.child_begin[u]; c < index.child_begin[u + 1]; ++c) {
+          const uint32_t child = index.children[c];
+          fine_reached[child >> 6] |= uint64_t{1} << (child & 63);
+        }
+      }
+      const int k = table[static_cast<size_t>(top_plane - p) * levels + (L - 1)];
+      if (k < 0) {
+        fine_stop.store(p, std::memory_order_release);
+        return;
+      }
+      ArithmeticDecoder dec(segments[k].data, segments[k].size);
+      if (!decode_level<true>(state, fine_ctx, p, L, dec, &fine_symbols, nullptr)) {
+        fine_stop.store(p, std::memory_order_release);
+        return;
+      }
+      ++fine_segments;
+    }
+  };
+  std::thread fine_thread;
+  try {
+    fine_thread = std::thread(fine);
+  } catch (const std::system_error&) {
+    return false;  // no thread: nothing decoded yet, the sequential decode does it all
+  }
+  // Ends and joins the second thread however this function is left.
+  const auto finish = [&] {
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      coarse_finished = true;
+      published.notify_one();
+    }
+    if (fine_thread.joinable()) fine_thread.join();
+  };
+  struct Finisher {
+    const decltype(finish)& f;
+    ~Finisher() { f(); }
+  } finisher{finish};
+
+  // The coarser levels. Stops also when level L has stopped above the plane
+  // (whatever the sequential decode would not have decoded stays untouched).
+  const LevelContext ctx = own_context(state);
+  int lowest_entered = top_plane + 1;  // lowest plane where a coarser segment was decoded
+  int coarse_stop_plane = -1, coarse_stop_level = -1;
+  size_t coarse_symbols = 0, coarse_segments = 0;
+  for (int p = top_plane; p >= 0 && coarse_stop_plane < 0; --p) {
+    if (fine_stop.load(std::memory_order_acquire) > p) break;
+    for (int l = 1; l < L; ++l) {
+      const int k = table[static_cast<size_t>(top_plane - p) * levels + (l - 1)];
+      if (k >= 0) lowest_entered = p;
+      // Level L - 1's children are all of level L, whose reached bits only
+      // the second thread's own copy holds.
+      if (k < 0 || !decode_segment(state, ctx, segments[k], p, l, &coarse_symbols, &log, l != L - 1)) {
+        coarse_stop_plane = p;
+        coarse_stop_level = l;
+        break;
+      }
+      ++coarse_segments;
+    }
+    if (coarse_stop_plane >= 0) break;
+    std::lock_guard<std::mutex> lock(mutex);
+    significant_end[static_cast<size_t>(top_plane - p)] = log.significant_count;
+    descendants_end[static_cast<size_t>(top_plane - p)] = log.descendants_count;
+    done_plane = p;
+    published.notify_one();
+  }
+  finish();
+
+  const int fine_stop_plane = fine_stop.load(std::memory_order_acquire);
+  if (fine_stop_plane >= 0 && lowest_entered < fine_stop_plane) return false;
+  st.symbols = coarse_symbols + fine_symbols;
+  st.segments_decoded = coarse_segments + fine_segments;
+  // The first stop in stream order: level L at plane p comes before every
+  // coarser level at plane p - 1 and after the coarser ones at plane p (which
+  // it waits for, so it cannot stop where they did).
+  if (fine_stop_plane >= 0) {
+    st.stop_plane = fine_stop_plane;
+    st.stop_level = L;
+  } else if (coarse_stop_plane >= 0) {
+    st.stop_plane = coarse_stop_plane;
+    st.stop_level = coarse_stop_level;
+  }
+  st.complete = st.stop_plane < 0;
+  st.last_complete_plane = st.complete ? 0 : st.stop_plane + 1;
+  return true;
+}
+
+// Below this many nodes in the finest level, a thread costs more than it saves.
+constexpr uint32_t kPipelineMinNodes = 1 << 14;
+
+}  // namespace
+
 StatusOr<std::vector<double>> decode_bitplanes(const CoefficientForest& forest, int top_plane,
                                                const std::vector<BitplaneSegmentView>& segments, int max_level,
-                                               BitplaneDecodeStats* stats) {
+                                               BitplaneDecodeStats* stats, BitplaneThreads threads) {
   SRCODEC_RETURN_IF_ERROR(validate_forest(forest));
   if (top_plane < -1 || top_plane > kMaxBitplane)
     return parse_error("bit planes: top plane " + std::to_string(top_plane) + " outside -1.." +
@@ -458,36 +756,21 @@ StatusOr<std::vector<double>> decode_bitplanes(const CoefficientForest& forest, 
   st = BitplaneDecodeStats{};
   st.last_complete_plane = top_plane + 1;
   const ForestIndex index = build_index(forest);
-  CoderState state(forest, index);
   const int levels = std::min(max_level, index.max_level);
-  size_t next = 0;
-  bool stopped = false;
-  for (int p = top_plane; p >= 0 && !stopped; --p) {
-    for (int l = 1; l <= levels && !stopped; ++l) {
-      // Segments before (p, l) that were not consumed are of levels > max_level.
-      const long key = stream_key({p, l, nullptr, 0}, top_plane);
-      while (next < segments.size() && stream_key(segments[next], top_plane) < key) ++next;
-      const bool present = next < segments.size() && segments[next].plane == p && segments[next].level == l;
-      if (present) {
-        ArithmeticDecoder dec(segments[next].data, segments[next].size);
-        ++next;
-        const bool leaves = index.child_begin[index.level_begin[l]] == index.child_begin[index.level_begin[l + 1]];
-        stopped = leaves ? !decode_level<true>(state, p, l, dec, &st.symbols)
-                         : !decode_level<false>(state, p, l, dec, &st.symbols);
-      } else {
-        stopped = true;
-      }
-      if (stopped) {
-        st.stop_plane = p;
-        st.stop_level = l;
-      } else {
-        ++st.segments_decoded;
-      }
-    }
-    if (!stopped) st.last_complete_plane = p;
+  // The pipeline needs a last level (no children) below at least one coarser one.
+  const bool can_pipeline = threads != BitplaneThreads::kSequential && top_plane >= 0 && levels >= 2 &&
+                            levels == index.max_level;
+  // (On one core the second thread would only add its event replay.)
+  static const bool several_cores = std::thread::hardware_concurrency() > 1;
+  const bool big = index.level_begin[levels + 1] - index.level_begin[levels] >= kPipelineMinNodes;
+  if (can_pipeline && (threads == BitplaneThreads::kPipelined || (several_cores && big))) {
+    CoderState state(forest, index);
+    if (decode_pipelined(state, top_plane, segments, levels, st)) return reconstruct(state);
+    st = BitplaneDecodeStats{};
+    st.last_complete_plane = top_plane + 1;
   }
-  st.complete = !stopped;
-  if (st.complete) st.last_complete_plane = 0;
+  CoderState state(forest, index);
+  decode_sequential(state, top_plane, segments, levels, st);
   return reconstruct(state);
 }
 

@@ -81,8 +81,16 @@ struct BitplaneDecodeStats {
 // outside -1..30, max_level < 0, segments out of order, duplicated, outside
 // planes 0..top_plane or levels 1..max forest level, or with null data and
 // non-zero size. Any bytes inside valid segments decode to some values.
+//
+// kAuto decodes the finest level on a second thread, one plane behind the
+// coarser levels, when it is the forest's last level and large enough to pay
+// for the thread (see bitplane.cpp); kSequential never does, kPipelined does
+// whenever it can (for tests). All three give the same values and stats.
+enum class BitplaneThreads { kAuto, kSequential, kPipelined };
+
 StatusOr<std::vector<double>> decode_bitplanes(const CoefficientForest& forest, int top_plane,
                                                const std::vector<BitplaneSegmentView>& segments, int max_level,
-                                               BitplaneDecodeStats* stats = nullptr);
+                                               BitplaneDecodeStats* stats = nullptr,
+                                               BitplaneThreads threads = BitplaneThreads::kAuto);
 
 }  // namespace srcodec

@@ -141,20 +141,6 @@ StatusOr<TriangleHierarchy> TriangleHierarchy::create(int32_t base_vertex_count,
   return h;
 }
 
-int32_t TriangleHierarchy::vertex_count() const { return static_cast<int32_t>(vertex_level_.size()); }
-int32_t TriangleHierarchy::base_vertex_count() const { return base_vertex_count_; }
-int32_t TriangleHierarchy::max_level() const { return max_level_; }
-
-int32_t TriangleHierarchy::vertex_level(int32_t v) const {
-  assert(v >= 0 && v < vertex_count());
-  return vertex_level_[v];
-}
-
-std::array<int32_t, 2> TriangleHierarchy::parent_edge(int32_t v) const {
-  assert(v >= 0 && v < vertex_count());
-  return parent_edge_[v];
-}
-
 ParamPoint TriangleHierarchy::nominal_param(int32_t v) const {
   assert(v >= 0 && v < vertex_count());
   const int32_t node = vertex_origin_[v] / 3, e = vertex_origin_[v] % 3;
@@ -275,7 +261,13 @@ void TriangleHierarchy::split_balanced(int32_t node, std::vector<int32_t>* new_v
     }
     mid[e] = vertex_count();
     vertex_level_.push_back(level);
-    parent_edge_.push_back({n.v[e], n.v[next3(e)]});
+    // Fields written in place, here and below: a braced temporary is built on
+    // the stack with 4-byte stores and copied with one wider load, which the
+    // CPU cannot forward from them (a stall of a dozen cycles per element,
+    // most of this function's time in the decoder's replay).
+    parent_edge_.emplace_back();
+    parent_edge_.back()[0] = n.v[e];
+    parent_edge_.back()[1] = n.v[next3(e)];
     vertex_origin_.push_back(3 * node + e);
     if (static_cast<int32_t>(vertices_at_level_.size()) <= level) vertices_at_level_.resize(level + 1, 0);
     ++vertices_at_level_[level];
@@ -287,18 +279,24 @@ void TriangleHierarchy::split_balanced(int32_t node, std::vector<int32_t>* new_v
                                                             {mid[2], mid[1], n.v[2]},
                                                             {mid[0], mid[1], mid[2]}}};
   for (int c = 0; c < 4; ++c) {
-    Node child;
-    child.v = corners_of[c];
+    Node& child = nodes_.emplace_back();
+    for (int k = 0; k < 3; ++k) child.v[k] = corners_of[c][k];
     child.level = level;
     child.parent = node;
+    child.first_child = -1;
     child.base_face = n.base_face;
-    nodes_.push_back(child);
   }
   // Inner edges: corner child i's edge i + 1 faces the middle child.
-  adjacent_.push_back({-1, first + 3, -1});
-  adjacent_.push_back({-1, -1, first + 3});
-  adjacent_.push_back({first + 3, -1, -1});
-  adjacent_.push_back({first + 1, first + 2, first});
+  const auto add_adjacent = [this](int32_t a, int32_t b, int32_t c) {
+    std::array<int32_t, 3>& across = adjacent_.emplace_back();
+    across[0] = a;
+    across[1] = b;
+    across[2] = c;
+  };
+  add_adjacent(-1, first + 3, -1);
+  add_adjacent(-1, -1, first + 3);
+  add_adjacent(first + 3, -1, -1);
+  add_adjacent(first + 1, first + 2, first);
   // Outer edges: the halves of edge e are edge e of children e and e + 1; the
   // neighbour's edge f runs the other way, so its child f meets our child
   // e + 1 and its child f + 1 meets our child e.

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <array>
+#include <cassert>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -38,13 +39,20 @@ class TriangleHierarchy {
   static StatusOr<TriangleHierarchy> create(int32_t base_vertex_count,
                                             const std::vector<std::array<int32_t, 3>>& base_triangles);
 
+  // (The accessors are inline: the decoder's forest and plan call them per vertex.)
   const std::vector<Node>& nodes() const { return nodes_; }
-  int32_t vertex_count() const;
-  int32_t base_vertex_count() const;
-  int32_t max_level() const;  // deepest node level, 0 before any split
+  int32_t vertex_count() const { return static_cast<int32_t>(vertex_level_.size()); }
+  int32_t base_vertex_count() const { return base_vertex_count_; }
+  int32_t max_level() const { return max_level_; }  // deepest node level, 0 before any split
 
-  int32_t vertex_level(int32_t v) const;                   // 0 for base vertices
-  std::array<int32_t, 2> parent_edge(int32_t v) const;     // {-1, -1} for base vertices
+  int32_t vertex_level(int32_t v) const {  // 0 for base vertices
+    assert(v >= 0 && v < vertex_count());
+    return vertex_level_[v];
+  }
+  std::array<int32_t, 2> parent_edge(int32_t v) const {  // {-1, -1} for base vertices
+    assert(v >= 0 && v < vertex_count());
+    return parent_edge_[v];
+  }
   // The vertex's dyadic point: a base corner, or the midpoint (on the base
   // domain) of its parent edge. Computed on demand in O(level): only the
   // remesher asks, and the decoder's replay should not pay for it per split.

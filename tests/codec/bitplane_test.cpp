@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <map>
 #include <random>
+#include <string>
 #include <vector>
 
 namespace srcodec {
@@ -383,6 +384,106 @@ TEST(Bitplane, GarbageDecodesWithoutCrash) {
     auto v = decode_bitplanes(s.forest, used_top, views, 1 + t % 4);
     ASSERT_TRUE(v.ok()) << v.status().message();
     for (double x : v.value()) ASSERT_LT(std::abs(x), std::ldexp(1.0, used_top + 1));
+  }
+}
+
+// The pipelined decode (the finest level on a second thread) gives exactly the
+// sequential decode's values and stats on every kind of input: whole streams,
+// cuts at and around every segment boundary and inside segments, a missing
+// segment of the finest or a coarser level, a finest-level segment cut short
+// or corrupted while later segments are still there (the pipelined decode
+// must then fall back: the coarser thread may already have decoded the next
+// plane), and garbage.
+void expect_same_decode(const CoefficientForest& forest, int top, const std::vector<BitplaneSegmentView>& views,
+                        int max_level, const std::string& what) {
+  BitplaneDecodeStats seq_stats, pipe_stats;
+  auto seq = decode_bitplanes(forest, top, views, max_level, &seq_stats, BitplaneThreads::kSequential);
+  auto pipe = decode_bitplanes(forest, top, views, max_level, &pipe_stats, BitplaneThreads::kPipelined);
+  ASSERT_EQ(seq.ok(), pipe.ok()) << what;
+  if (!seq.ok()) return;
+  ASSERT_TRUE(seq.value() == pipe.value()) << what;
+  EXPECT_EQ(seq_stats.last_complete_plane, pipe_stats.last_complete_plane) << what;
+  EXPECT_EQ(seq_stats.symbols, pipe_stats.symbols) << what;
+  EXPECT_EQ(seq_stats.segments_decoded, pipe_stats.segments_decoded) << what;
+  EXPECT_EQ(seq_stats.complete, pipe_stats.complete) << what;
+  EXPECT_EQ(seq_stats.stop_plane, pipe_stats.stop_plane) << what;
+  EXPECT_EQ(seq_stats.stop_level, pipe_stats.stop_level) << what;
+}
+
+TEST(Bitplane, PipelinedDecodeEqualsSequential) {
+  std::mt19937 rng(5);
+  for (uint32_t seed = 1; seed <= 3; ++seed) {
+    const Synthetic s = make_synthetic(12 + 5 * seed, 4 + seed % 2, 300.0, 40 + seed, seed == 2 ? 0.05 : 0.0);
+    const BitplaneStream stream = encode_bitplanes(s.forest, s.q);
+    const int levels = s.forest.level.back();
+    const std::vector<BitplaneSegmentView> all = views_of(stream);
+    for (int max_level : {1, 2, levels - 1, levels, 255})
+      expect_same_decode(s.forest, stream.top_plane, all, max_level, "whole, max level " + std::to_string(max_level));
+    // Cuts: at, before and after each segment's end, and in its middle.
+    size_t offset = 0;
+    std::vector<size_t> cuts;
+    for (const auto& seg : stream.segments) {
+      for (size_t c : {offset + seg.bytes.size() / 2, offset + seg.bytes.size() - std::min<size_t>(seg.bytes.size(), 1),
+                       offset + seg.bytes.size(), offset + seg.bytes.size() + 1})
+        cuts.push_back(c);
+      offset += seg.bytes.size();
+    }
+    for (size_t cut : cuts) {
+      std::vector<BitplaneSegmentView> views;
+      size_t start = 0;
+      for (const auto& seg : stream.segments) {
+        if (start >= cut && !(seg.bytes.empty() && start == cut)) break;
+        const size_t take = std::min(seg.bytes.size(), cut - start);
+        views.push_back({seg.plane, seg.level, seg.bytes.data(), take});
+        start += seg.bytes.size();
+        if (take < seg.bytes.size()) break;
+      }
+      expect_same_decode(s.forest, stream.top_plane, views, 255, "cut " + std::to_string(cut));
+    }
+    // One segment missing or cut short (to half, or empty) with all the later
+    // ones present: every segment in turn.
+    for (size_t k = 0; k < all.size(); ++k) {
+      for (int how = 0; how < 3; ++how) {
+        std::vector<BitplaneSegmentView> views = all;
+        if (how == 0) {
+          views.erase(views.begin() + static_cast<long>(k));
+        } else {
+          views[k].size = how == 1 ? views[k].size / 2 : 0;
+        }
+        expect_same_decode(s.forest, stream.top_plane, views, 255,
+                           "segment " + std::to_string(k) + " altered " + std::to_string(how));
+      }
+    }
+    // Flipped bytes.
+    for (int t = 0; t < 60; ++t) {
+      std::vector<std::vector<uint8_t>> bytes;
+      for (const auto& seg : stream.segments) bytes.push_back(seg.bytes);
+      for (int k = 0; k < 1 + t % 4; ++k) {
+        auto& seg = bytes[rng() % bytes.size()];
+        if (!seg.empty()) seg[rng() % seg.size()] ^= static_cast<uint8_t>(1 + rng() % 255);
+      }
+      std::vector<BitplaneSegmentView> views;
+      for (size_t k = 0; k < bytes.size(); ++k)
+        views.push_back({stream.segments[k].plane, stream.segments[k].level, bytes[k].data(), bytes[k].size()});
+      expect_same_decode(s.forest, stream.top_plane, views, 255, "flipped bytes, try " + std::to_string(t));
+    }
+  }
+  // Garbage under a made-up top plane.
+  const Synthetic s = make_synthetic(20, 4, 300.0, 7, 0.03);
+  for (int t = 0; t < 60; ++t) {
+    const int top = static_cast<int>(rng() % 31);
+    std::vector<std::vector<uint8_t>> bytes;
+    std::vector<BitplaneSegmentView> views;
+    for (int p = top; p >= 0; --p) {
+      for (int l = 1; l <= 4; ++l) {
+        bytes.emplace_back(rng() % 40);
+        for (auto& b : bytes.back()) b = static_cast<uint8_t>(rng());
+      }
+    }
+    size_t k = 0;
+    for (int p = top; p >= 0; --p)
+      for (int l = 1; l <= 4; ++l, ++k) views.push_back({p, l, bytes[k].data(), bytes[k].size()});
+    expect_same_decode(s.forest, top, views, 255, "garbage, try " + std::to_string(t));
   }
 }
 
