@@ -165,10 +165,9 @@ TEST(Bitplane, CoarseLevelsDecodeAlone) {
   }
 }
 
-// Decodes the stream cut after `cut` bytes of its concatenation: the segments
-// before the cut, the one it falls into cut short.
-std::vector<double> decode_cut(const Synthetic& s, const BitplaneStream& stream, size_t cut,
-                               BitplaneDecodeStats* stats) {
+// The stream cut after `cut` bytes of its concatenation: the segments before
+// the cut, the one it falls into cut short.
+std::vector<BitplaneSegmentView> cut_views(const BitplaneStream& stream, size_t cut) {
   std::vector<BitplaneSegmentView> views;
   size_t start = 0;
   for (const auto& seg : stream.segments) {
@@ -178,7 +177,13 @@ std::vector<double> decode_cut(const Synthetic& s, const BitplaneStream& stream,
     start += seg.bytes.size();
     if (take < seg.bytes.size()) break;
   }
-  auto v = decode_bitplanes(s.forest, stream.top_plane, views, 255, stats);
+  return views;
+}
+
+// Decodes the stream cut after `cut` bytes (cut_views).
+std::vector<double> decode_cut(const Synthetic& s, const BitplaneStream& stream, size_t cut,
+                               BitplaneDecodeStats* stats) {
+  auto v = decode_bitplanes(s.forest, stream.top_plane, cut_views(stream, cut), 255, stats);
   EXPECT_TRUE(v.ok()) << v.status().message();
   return v.ok() ? v.value() : std::vector<double>();
 }
@@ -428,18 +433,8 @@ TEST(Bitplane, PipelinedDecodeEqualsSequential) {
         cuts.push_back(c);
       offset += seg.bytes.size();
     }
-    for (size_t cut : cuts) {
-      std::vector<BitplaneSegmentView> views;
-      size_t start = 0;
-      for (const auto& seg : stream.segments) {
-        if (start >= cut && !(seg.bytes.empty() && start == cut)) break;
-        const size_t take = std::min(seg.bytes.size(), cut - start);
-        views.push_back({seg.plane, seg.level, seg.bytes.data(), take});
-        start += seg.bytes.size();
-        if (take < seg.bytes.size()) break;
-      }
-      expect_same_decode(s.forest, stream.top_plane, views, 255, "cut " + std::to_string(cut));
-    }
+    for (size_t cut : cuts)
+      expect_same_decode(s.forest, stream.top_plane, cut_views(stream, cut), 255, "cut " + std::to_string(cut));
     // One segment missing or cut short (to half, or empty) with all the later
     // ones present: every segment in turn.
     for (size_t k = 0; k < all.size(); ++k) {
