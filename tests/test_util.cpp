@@ -117,6 +117,27 @@ TriangleMesh icosphere(int subdivisions, double radius) {
   return m;
 }
 
+TriangleMesh waisted_ring(int n, int m) {
+  TriangleMesh mesh;
+  const double pi = std::acos(-1.0);
+  for (int i = 0; i < n; ++i) {
+    const double u = 2.0 * pi * i / n;
+    const double r = 0.25 - 0.235 * std::exp(-(u - pi) * (u - pi) / 0.1);
+    for (int j = 0; j < m; ++j) {
+      const double v = 2.0 * pi * j / m;
+      const double rho = 1.0 + r * std::cos(v);
+      mesh.positions.emplace_back(rho * std::cos(u), rho * std::sin(u), r * std::sin(v));
+    }
+  }
+  auto id = [n, m](int i, int j) { return (i % n) * m + (j % m); };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < m; ++j) {
+      mesh.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      mesh.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return mesh;
+}
+
 std::string shell_quote(const std::string& s) { return "'" + s + "'"; }
 
 double json_number(const std::string& json, const std::string& key) {

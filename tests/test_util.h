@@ -42,5 +42,8 @@ TriangleMesh tetrahedron();
 TriangleMesh unit_cube();                   // closed, 8 vertices, 12 triangles
 TriangleMesh flat_square(int n);            // open n x n grid in z = 0, 1 boundary loop
 TriangleMesh icosphere(int subdivisions, double radius);
+// A ring (circle of radius 1) of tube of radius 0.25 except for a short
+// waist of radius 0.015; n x m vertices, closed, genus 1.
+TriangleMesh waisted_ring(int n, int m);
 
 }  // namespace srcodec::test

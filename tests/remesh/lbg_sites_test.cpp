@@ -301,29 +301,6 @@ TEST(LbgSites, CellsStayConnectedAcrossCloseSheets) {
   }
 }
 
-// A ring (circle of radius 1) of tube of radius 0.25 except for a short
-// waist of radius 0.015; n x m vertices, closed, genus 1.
-TriangleMesh waisted_ring(int n, int m) {
-  TriangleMesh mesh;
-  const double pi = std::acos(-1.0);
-  for (int i = 0; i < n; ++i) {
-    const double u = 2.0 * pi * i / n;
-    const double r = 0.25 - 0.235 * std::exp(-(u - pi) * (u - pi) / 0.1);
-    for (int j = 0; j < m; ++j) {
-      const double v = 2.0 * pi * j / m;
-      const double rho = 1.0 + r * std::cos(v);
-      mesh.positions.emplace_back(rho * std::cos(u), rho * std::sin(u), r * std::sin(v));
-    }
-  }
-  auto id = [n, m](int i, int j) { return (i % n) * m + (j % m); };
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < m; ++j) {
-      mesh.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      mesh.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  return mesh;
-}
-
 // Per cell: the length of its vector area (each triangle's split in thirds
 // among its corners' cells) over its area; 1 for a flat cell.
 std::vector<double> cell_flatness(const TriangleMesh& m, const VoronoiCells& c) {
@@ -342,7 +319,7 @@ std::vector<double> cell_flatness(const TriangleMesh& m, const VoronoiCells& c) 
 }
 
 TEST(LbgSites, SplitsCellsThatWrapAroundAThinWaist) {
-  const TriangleMesh ring = waisted_ring(400, 24);
+  const TriangleMesh ring = test::waisted_ring(400, 24);
   constexpr size_t kTarget = 30;
   const std::vector<double> plain = cell_flatness(ring, run(ring, kTarget));
   const double plain_worst = *std::min_element(plain.begin(), plain.end());
