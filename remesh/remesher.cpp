@@ -274,8 +274,9 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
   rep.seconds_base = base_s;
   rep.base_vertices = base.mesh.positions.size();
   progress("base mesh: " + std::to_string(rep.base_vertices) + " vertices (" + std::to_string(rep.curled_sites) +
-           " sites added in curled cells, " + std::to_string(rep.promoted_vertices) + " kept by the collapses), " + std::to_string(base.mesh.triangles.size()) + " triangles; sites " +
-           std::to_string(sites_s) + " s, collapses " + std::to_string(base_s) + " s");
+           " sites added in curled cells, " + std::to_string(rep.promoted_vertices) + " kept by the collapses), " +
+           std::to_string(base.mesh.triangles.size()) + " triangles; sites " + std::to_string(sites_s) +
+           " s, collapses " + std::to_string(base_s) + " s");
 
   start = std::chrono::steady_clock::now();
   RefineOptions refine_options;
