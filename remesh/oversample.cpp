@@ -1,11 +1,13 @@
 // Oversampling by Butterfly or Loop subdivision (paper §IV). OpenMesh's
-// uniform subdividers do the work; this file only converts meshes and checks.
+// uniform subdividers do the work; this file converts meshes, checks, and
+// splits at the midpoints for the linear scheme.
 #include "remesh/oversample.h"
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Tools/Subdivider/Uniform/LoopT.hh>
 #include <OpenMesh/Tools/Subdivider/Uniform/ModifiedButterFlyT.hh>
 #include <string>
+#include <unordered_map>
 
 #include "remesh/openmesh_types.h"
 
@@ -33,12 +35,47 @@ StatusOr<OmMesh> to_openmesh(const TriangleMesh& mesh) {
   return om;
 }
 
+// One 1-to-4 split at the edges' midpoints: the surface does not change.
+TriangleMesh split_at_midpoints(const TriangleMesh& mesh) {
+  TriangleMesh out;
+  out.positions = mesh.positions;
+  out.triangles.reserve(4 * mesh.triangles.size());
+  std::unordered_map<uint64_t, int32_t> midpoint;
+  midpoint.reserve(3 * mesh.triangles.size() / 2);
+  auto mid = [&](int32_t a, int32_t b) {
+    const uint64_t key = (static_cast<uint64_t>(std::min(a, b)) << 32) | static_cast<uint32_t>(std::max(a, b));
+    const auto [it, added] = midpoint.emplace(key, static_cast<int32_t>(out.positions.size()));
+    if (added) out.positions.push_back(0.5 * (mesh.positions[a] + mesh.positions[b]));
+    return it->second;
+  };
+  for (const auto& t : mesh.triangles) {
+    const int32_t m01 = mid(t[0], t[1]), m12 = mid(t[1], t[2]), m20 = mid(t[2], t[0]);
+    out.triangles.push_back({t[0], m01, m20});
+    out.triangles.push_back({t[1], m12, m01});
+    out.triangles.push_back({t[2], m20, m12});
+    out.triangles.push_back({m01, m12, m20});
+  }
+  return out;
+}
+
 }  // namespace
+
+StatusOr<OversampleScheme> parse_oversample_scheme(const std::string& name, const std::string& flag) {
+  if (name == "butterfly") return OversampleScheme::kButterfly;
+  if (name == "loop") return OversampleScheme::kLoop;
+  if (name == "linear") return OversampleScheme::kLinear;
+  return invalid_argument(flag + " " + name + ": use butterfly, loop or linear");
+}
 
 StatusOr<TriangleMesh> oversample(const TriangleMesh& mesh, OversampleScheme scheme, int steps) {
   if (steps < 0 || steps > 3)
     return invalid_argument("oversample: " + std::to_string(steps) + " steps asked; use 0 to 3");
   if (steps == 0) return mesh;
+  if (scheme == OversampleScheme::kLinear) {
+    TriangleMesh out = split_at_midpoints(mesh);
+    for (int s = 1; s < steps; ++s) out = split_at_midpoints(out);
+    return out;
+  }
   SRCODEC_ASSIGN_OR_RETURN(OmMesh om, to_openmesh(mesh));
   bool done = false;
   if (scheme == OversampleScheme::kButterfly) {

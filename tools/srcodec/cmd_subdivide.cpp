@@ -1,4 +1,4 @@
-// `srcodec subdivide MESH -o OUT`: Butterfly or Loop subdivision, per
+// `srcodec subdivide MESH -o OUT`: Butterfly, Loop or linear subdivision, per
 // component (the remesher's oversampling step on its own; benchmarks use it to
 // make large inputs, e.g. igea after two Loop steps).
 #include <cstdio>
@@ -18,9 +18,7 @@ struct SubdivideOptions {
 };
 
 Status run_subdivide(const SubdivideOptions& o) {
-  if (o.scheme != "loop" && o.scheme != "butterfly")
-    return invalid_argument("--scheme " + o.scheme + ": use butterfly or loop");
-  const OversampleScheme scheme = o.scheme == "loop" ? OversampleScheme::kLoop : OversampleScheme::kButterfly;
+  SRCODEC_ASSIGN_OR_RETURN(const OversampleScheme scheme, parse_oversample_scheme(o.scheme, "--scheme"));
   SRCODEC_ASSIGN_OR_RETURN(TriangleMesh input, read_triangle_mesh(o.input));
   SRCODEC_ASSIGN_OR_RETURN(std::vector<ComponentMesh> parts, split_into_manifold_components(input));
   TriangleMesh out;
@@ -39,10 +37,10 @@ Status run_subdivide(const SubdivideOptions& o) {
 
 Command add_subdivide_command(CLI::App& app) {
   auto o = std::make_shared<SubdivideOptions>();
-  CLI::App* cmd = app.add_subcommand("subdivide", "Butterfly or Loop subdivision of every component");
+  CLI::App* cmd = app.add_subcommand("subdivide", "Butterfly, Loop or linear subdivision of every component");
   cmd->add_option("mesh", o->input, "Input mesh (OBJ, PLY, OFF, STL)")->required();
   cmd->add_option("-o,--output", o->output, "Output mesh (OBJ or PLY)")->required();
-  cmd->add_option("--scheme", o->scheme, "butterfly or loop")->capture_default_str();
+  cmd->add_option("--scheme", o->scheme, "butterfly, loop or linear")->capture_default_str();
   cmd->add_option("--steps", o->steps, "1-to-4 steps")->check(CLI::Range(1, 3))->capture_default_str();
   return {cmd, [o] { return run_subdivide(*o); }};
 }

@@ -26,7 +26,7 @@ void add_remesh_flags(CLI::App* cmd, RemeshFlags& f) {
       ->check(CLI::Range(1.0, 300.0));
   cmd->add_option("--oversample", f.oversample, "Subdivision steps before remeshing: auto, 0, 1, 2 or 3")
       ->capture_default_str();
-  cmd->add_option("--scheme", f.scheme, "Oversampling scheme: butterfly or loop")->capture_default_str();
+  cmd->add_option("--scheme", f.scheme, "Oversampling scheme: butterfly, loop, or linear (keeps the input's facets)")->capture_default_str();
 }
 
 StatusOr<RemeshOptions> to_remesh_options(const RemeshFlags& o) {
@@ -49,13 +49,7 @@ StatusOr<RemeshOptions> to_remesh_options(const RemeshFlags& o) {
   } else {
     return invalid_argument("--oversample " + o.oversample + ": use auto, 0, 1, 2 or 3");
   }
-  if (o.scheme == "butterfly") {
-    r.scheme = OversampleScheme::kButterfly;
-  } else if (o.scheme == "loop") {
-    r.scheme = OversampleScheme::kLoop;
-  } else {
-    return invalid_argument("--scheme " + o.scheme + ": use butterfly or loop");
-  }
+  SRCODEC_ASSIGN_OR_RETURN(r.scheme, parse_oversample_scheme(o.scheme, "--scheme"));
   return r;
 }
 
