@@ -2,7 +2,8 @@
 """The paper's remeshing experiments (Kammoun, Payan, Antonini, Figs. 6-9) on
 our corpus: remeshing error against triangle count per level, for uniform
 refinement, adaptive refinement at several thresholds (and, ours, at geometric
-tolerances), and Butterfly against Loop oversampling. Writes a CSV and a plot.
+tolerances), and Butterfly against Loop oversampling (and, ours, linear: splits
+at the edges' midpoints, on the input's facets). Writes a CSV and a plot.
 
 usage: /usr/bin/python3 tools/remesh_experiments.py [--quick] [--out docs/remesh_experiments]
   (needs build/tools/srcodec, python3-matplotlib; the corpus in ../shared/data/meshes)
@@ -71,9 +72,10 @@ def main():
         for tol in plan["tolerances"]:
             rows += rows_of(mesh, f"tol={tol} dB", "butterfly",
                             run(mesh, plan["levels"], ["--uniform", "--tolerance", str(tol)]))
-    # Fig. 6: the input oversampled three times with Butterfly or with Loop.
+    # Fig. 6: the input oversampled three times with Butterfly or with Loop
+    # (and linearly, ours).
     for mesh in plan["scheme_meshes"]:
-        for scheme in ["butterfly", "loop"]:
+        for scheme in ["butterfly", "loop", "linear"]:
             rows += rows_of(mesh, f"{scheme} x3", scheme,
                             run(mesh, plan["levels"], ["--uniform", "--oversample", "3", "--scheme", scheme]))
     with open(args.out + ".csv", "w", newline="") as f:
