@@ -1,0 +1,137 @@
+#!/usr/bin/python3
+"""How few triangles an adaptive last level could keep at all: a bound for the
+"within 0.5 dB of uniform with at most 60% of its triangles" target.
+
+Takes a uniform remesh's last two levels (written by `srcodec remesh ... --uniform
+--write-levels PREFIX`) and the input. Each input vertex's squared distance to
+the coarser level (C) and to the finest (F) is summed per nearest triangle of C:
+leaving that triangle unsplit keeps its C error, splitting it gives its F error.
+Splitting C's triangles in the best order (by their own gain), how many
+triangles does the finest level need to stay within 0.5 dB of uniform F?
+Without closure, and with the remesher's red-green closure (a triangle with two
+or three split neighbours is split too, one with one split neighbour becomes two
+green triangles). The error is one-sided (input to remesh), not the symmetric
+PSNR of `srcodec compare`.
+
+usage: /usr/bin/python3 tools/bench/adaptive_bound.py INPUT.obj COARSER.obj FINEST.obj
+  e.g. srcodec remesh igea.ply -o /tmp/i.obj --levels 5 --uniform --write-levels /tmp/i
+       tools/bench/adaptive_bound.py ../shared/data/meshes/igea_tri.obj /tmp/i_l4.obj /tmp/i_l5.obj
+"""
+import sys
+from collections import defaultdict
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+
+def load_obj(path):
+    positions, triangles = [], []
+    with open(path) as f:
+        for line in f:
+            if line.startswith("v "):
+                positions.append([float(x) for x in line.split()[1:4]])
+            elif line.startswith("f "):
+                ids = [int(x.split("/")[0]) - 1 for x in line.split()[1:]]
+                triangles += [[ids[0], ids[k], ids[k + 1]] for k in range(1, len(ids) - 1)]
+    return np.array(positions), np.array(triangles, dtype=np.int64)
+
+
+def segment_d2(p, a, b):
+    ab = b - a
+    t = np.clip(((p - a) * ab).sum(-1) / np.maximum((ab * ab).sum(-1), 1e-300), 0.0, 1.0)
+    return ((p - (a + t[..., None] * ab)) ** 2).sum(-1)
+
+
+def triangle_d2(p, a, b, c):
+    n = np.cross(b - a, c - a)
+    nn = np.maximum((n * n).sum(-1), 1e-300)
+    d = ((p - a) * n).sum(-1)
+    q = p - (d / nn)[..., None] * n
+    inside = ((np.cross(b - a, q - a) * n).sum(-1) >= 0) & ((np.cross(c - b, q - b) * n).sum(-1) >= 0) & (
+        (np.cross(a - c, q - c) * n).sum(-1) >= 0)
+    edges = np.minimum(np.minimum(segment_d2(p, a, b), segment_d2(p, b, c)), segment_d2(p, c, a))
+    return np.where(inside, d * d / nn, edges)
+
+
+def nearest_triangle(points, positions, triangles, k=10):
+    """Squared distance from each point to the mesh and the triangle it is nearest to (among the k triangles
+    with the nearest centroids)."""
+    _, cand = cKDTree(positions[triangles].mean(1)).query(points, k=k)
+    d2 = triangle_d2(points[:, None, :], positions[triangles[cand, 0]], positions[triangles[cand, 1]],
+                     positions[triangles[cand, 2]])
+    best = d2.argmin(1)
+    rows = np.arange(len(points))
+    return d2[rows, best], cand[rows, best]
+
+
+def neighbours(triangles):
+    by_edge = defaultdict(list)
+    for t, (a, b, c) in enumerate(triangles):
+        for u, v in ((a, b), (b, c), (c, a)):
+            by_edge[(min(u, v), max(u, v))].append(t)
+    out = np.full((len(triangles), 3), -1)
+    fill = np.zeros(len(triangles), dtype=int)
+    for ts in by_edge.values():
+        if len(ts) == 2:
+            for x, y in ((ts[0], ts[1]), (ts[1], ts[0])):
+                out[x, fill[x]] = y
+                fill[x] += 1
+    return out
+
+
+def main():
+    if len(sys.argv) != 4:
+        sys.exit(__doc__)
+    inputs, _ = load_obj(sys.argv[1])
+    coarse_v, coarse_t = load_obj(sys.argv[2])
+    fine_v, fine_t = load_obj(sys.argv[3])
+    d_coarse, owner = nearest_triangle(inputs, coarse_v, coarse_t)
+    d_fine, _ = nearest_triangle(inputs, fine_v, fine_t)
+    n = len(coarse_t)
+    e_coarse = np.bincount(owner, weights=d_coarse, minlength=n)
+    e_fine = np.bincount(owner, weights=d_fine, minlength=n)
+    gain = e_coarse - e_fine
+    target = d_fine.sum() * 10 ** 0.05  # 0.5 dB above uniform's squared error
+    uniform = len(fine_t)
+    print(f"coarser level: {n} triangles, finest: {uniform}; one-sided RMS {np.sqrt(d_coarse.mean()):.4g} -> "
+          f"{np.sqrt(d_fine.mean()):.4g}")
+
+    order = np.argsort(-gain)
+    remaining = e_coarse.sum() - np.cumsum(gain[order])
+    k = int(np.argmax(remaining <= target)) + 1
+    print(f"best order, no closure: split {k} ({100 * k / n:.1f}%) -> {100 * (n + 3 * k) / uniform:.1f}% of "
+          f"uniform's triangles")
+
+    around = neighbours(coarse_t)
+
+    def closed(selected):
+        selected = selected.copy()
+        while True:
+            split_around = np.where(around >= 0, selected[np.maximum(around, 0)], False).sum(1)
+            more = ~selected & (split_around >= 2)
+            if not more.any():
+                break
+            selected |= more
+        triangles = 4 * selected.sum() + ((~selected) * (1 + split_around)).sum()
+        return triangles, e_coarse[~selected].sum() + e_fine[selected].sum()
+
+    for name, score in (("gain", gain), ("error mass", e_coarse)):
+        order = np.argsort(-score)
+        lo, hi = 0, n
+        while lo < hi:  # the fewest splits, in this order, whose closure meets the target
+            mid = (lo + hi) // 2
+            selected = np.zeros(n, dtype=bool)
+            selected[order[:mid]] = True
+            if closed(selected)[1] <= target:
+                hi = mid
+            else:
+                lo = mid + 1
+        selected = np.zeros(n, dtype=bool)
+        selected[order[:lo]] = True
+        triangles, _ = closed(selected)
+        print(f"order by {name}, with closure: {lo} selected -> {100 * triangles / uniform:.1f}% of uniform's "
+              f"triangles")
+
+
+if __name__ == "__main__":
+    main()
