@@ -114,6 +114,19 @@ TEST(Cli, RemeshSampleReportsEveryLevel) {
   EXPECT_LT(psnr, 120.0);
 }
 
+TEST(Cli, SubdivideLinearSplitsEveryTriangleInFour) {
+  test::ScratchDir dir;
+  const std::string in = q(test::source_path("data/bunny_npm.obj")), out = dir.file("lin.obj");
+  auto r = run_srcodec("subdivide --scheme linear --steps 2 " + in + " -o " + q(out));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("1839 vertices, 3674 triangles -> "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(": 29394 vertices, 58784 triangles"), std::string::npos) << r.out;  // closed, genus 0
+  // On the input's facets, up to the OBJ's printed digits (222 dB measured).
+  auto same = run_srcodec("compare --json --samples 20000 " + in + " " + q(out));
+  ASSERT_EQ(same.exit_code, 0) << same.err;
+  EXPECT_GT(json_number(same.out, "psnr"), 180.0) << same.out;
+}
+
 TEST(Cli, RemeshBadRequestsSayWhatWouldWork) {
   test::ScratchDir dir;
   const std::string in = q(test::source_path("data/bunny_npm.obj")), out = dir.file("x.obj");
@@ -124,8 +137,13 @@ TEST(Cli, RemeshBadRequestsSayWhatWouldWork) {
   auto deep = run_srcodec("remesh --quiet --oversample 0 --levels 4 " + in + " -o " + q(out));
   EXPECT_EQ(deep.exit_code, 1);
   EXPECT_NE(deep.err.find("fewer levels"), std::string::npos) << deep.err;
-  auto scheme = run_srcodec("remesh --quiet --oversample 9 " + in + " -o " + q(out));
-  EXPECT_NE(scheme.exit_code, 0);
+  auto steps = run_srcodec("remesh --quiet --oversample 9 " + in + " -o " + q(out));
+  EXPECT_NE(steps.exit_code, 0);
+  for (const std::string command : {"remesh --quiet", "subdivide"}) {
+    auto scheme = run_srcodec(command + " --scheme cubic " + in + " -o " + q(out));
+    EXPECT_EQ(scheme.exit_code, 1) << command;
+    EXPECT_NE(scheme.err.find("--scheme cubic: use butterfly, loop or linear"), std::string::npos) << scheme.err;
+  }
   auto both = run_srcodec("remesh --quiet --uniform --threshold 3 " + in + " -o " + q(out));
   EXPECT_NE(both.exit_code, 0);
   for (const char* tolerance : {"0", "-5", "nan", "400", "x"}) {
