@@ -15,16 +15,22 @@ namespace srcodec {
 namespace {
 
 
+Status check_indices(const TriangleMesh& mesh) {
+  for (size_t t = 0; t < mesh.triangles.size(); ++t)
+    for (int32_t v : mesh.triangles[t])
+      if (v < 0 || static_cast<size_t>(v) >= mesh.positions.size())
+        return invalid_mesh("oversample: triangle " + std::to_string(t) + " uses vertex " + std::to_string(v) +
+                            ", outside the " + std::to_string(mesh.positions.size()) + " vertices");
+  return ok_status();
+}
+
 StatusOr<OmMesh> to_openmesh(const TriangleMesh& mesh) {
+  SRCODEC_RETURN_IF_ERROR(check_indices(mesh));
   OmMesh om;
   om.reserve(mesh.positions.size(), 3 * mesh.triangles.size() / 2, mesh.triangles.size());
   for (const Eigen::Vector3d& p : mesh.positions) om.add_vertex(OmMesh::Point(p.x(), p.y(), p.z()));
   for (size_t t = 0; t < mesh.triangles.size(); ++t) {
     const auto& tri = mesh.triangles[t];
-    for (int32_t v : tri)
-      if (v < 0 || static_cast<size_t>(v) >= mesh.positions.size())
-        return invalid_mesh("oversample: triangle " + std::to_string(t) + " uses vertex " + std::to_string(v) +
-                            ", outside the " + std::to_string(mesh.positions.size()) + " vertices");
     const OmMesh::FaceHandle f = om.add_face(OmMesh::VertexHandle(tri[0]), OmMesh::VertexHandle(tri[1]),
                                              OmMesh::VertexHandle(tri[2]));
     if (!f.is_valid())
@@ -72,6 +78,7 @@ StatusOr<TriangleMesh> oversample(const TriangleMesh& mesh, OversampleScheme sch
     return invalid_argument("oversample: " + std::to_string(steps) + " steps asked; use 0 to 3");
   if (steps == 0) return mesh;
   if (scheme == OversampleScheme::kLinear) {
+    SRCODEC_RETURN_IF_ERROR(check_indices(mesh));
     TriangleMesh out = split_at_midpoints(mesh);
     for (int s = 1; s < steps; ++s) out = split_at_midpoints(out);
     return out;

@@ -26,9 +26,11 @@ StatusOr<OversampleScheme> parse_oversample_scheme(const std::string& name, cons
 // oriented component (an element of split_into_manifold_components's result).
 // Butterfly keeps every input vertex where it was (vertex i of the input is
 // vertex i of the output); Loop moves them; Linear keeps them and puts the
-// new ones on the input's triangles, so the surface stays the input's. Boundaries use the schemes'
-// boundary rules (4-point / cubic B-spline), so boundary loops stay loops.
-// Errors: steps outside 0..3, or a mesh OpenMesh cannot take as a manifold.
+// new ones on the input's triangles, so the surface stays the input's.
+// Butterfly and Loop use their boundary rules (4-point / cubic B-spline);
+// either way boundary loops stay loops. Errors: steps outside 0..3, indices
+// outside the vertices, or (Butterfly, Loop) a mesh OpenMesh cannot take as
+// a manifold.
 StatusOr<TriangleMesh> oversample(const TriangleMesh& mesh, OversampleScheme scheme, int steps);
 
 }  // namespace srcodec

@@ -218,6 +218,12 @@ TEST(Oversample, LinearKeepsTheInputSurface) {
   ASSERT_TRUE(square.ok()) << square.status().message();
   EXPECT_EQ(stats(square.value()).boundary_loops, 1u);
   EXPECT_EQ(square->positions.size(), 13u * 13u);
+  TriangleMesh broken = test::tetrahedron();
+  broken.triangles[2][1] = 9;
+  auto refused = oversample(broken, OversampleScheme::kLinear, 1);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.status().message().find("triangle 2 uses vertex 9"), std::string::npos)
+      << refused.status().message();
 }
 
 TEST(Oversample, SchemeNames) {
