@@ -35,6 +35,20 @@
 // Decoding checks ArithmeticDecoder::ok() after each group: a group that
 // depended on bytes past the end of its segment is dropped and decoding stops
 // there, so everything returned is exactly the encoder's knowledge.
+//
+// Raw planes (`raw_planes` > 0, .srm version 2): the segments of planes
+// p < raw_planes hold raw bits instead of an arithmetic-coded stream, packed
+// 8 to a byte (bit k of the segment in byte k / 8 at bit k % 8; the last byte
+// padded with zeros): first the refinement bits, one per node of the level
+// found significant at a plane above p, in index order (the decoder counts
+// each level's significant nodes, so it knows how many), then the other
+// groups' symbols in index order, one bit each (significance; sign if
+// significant; D). The same symbols as a coded plane, in two passes (a
+// refinement bit changes no context, so the values are the same). A cut
+// segment gives the refinement bits it holds and the groups whose bits are
+// all there. In the lowest planes every kind of symbol is close to even and
+// the adaptive models save little (docs/codec_speed.md, fifth session), while
+// a raw bit decodes in a fraction of a coded symbol's time.
 #include "codec/bitplane.h"
 
 #include <algorithm>
@@ -42,6 +56,7 @@
 #include <cassert>
 #include <cmath>
 #include <condition_variable>
+#include <cstdint>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -49,6 +64,10 @@
 #include <thread>
 
 #include "codec/range_coder.h"
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace srcodec {
 namespace {
@@ -113,10 +132,15 @@ struct CoderState {
   std::vector<int8_t> low_plane;   // lowest plane decoded for a significant node
   std::vector<uint32_t> magnitude; // known bits of |q|
   std::vector<uint64_t> reached;   // bitset: roots, and children of nodes with D true
+  // Per level: nodes found significant so far (the refinement bits of the
+  // next raw plane). Each level's entry is written by the thread decoding it.
+  std::vector<uint32_t> significant_count;
+  int raw_planes = 0;  // planes below this are raw (see the top)
 
-  CoderState(const CoefficientForest& f, const ForestIndex& x)
+  CoderState(const CoefficientForest& f, const ForestIndex& x, int raw = 0)
       : forest(f), index(x), models(x.model_sets), flags(f.parent.size(), 0), sig_plane(f.parent.size(), -1),
-        low_plane(f.parent.size(), -1), magnitude(f.parent.size(), 0), reached((f.parent.size() + 63) / 64, 0) {
+        low_plane(f.parent.size(), -1), magnitude(f.parent.size(), 0), reached((f.parent.size() + 63) / 64, 0),
+        significant_count(static_cast<size_t>(x.max_level) + 2, 0), raw_planes(raw) {
     for (size_t i = 0; i < f.parent.size(); ++i) {
       if (f.parent[i] < 0) reached[i >> 6] |= uint64_t{1} << (i & 63);
       if (x.child_begin[i] != x.child_begin[i + 1]) flags[i] = kHasChildren;
@@ -172,6 +196,7 @@ struct CoderState {
       sig_plane[n] = static_cast<int8_t>(p);
       magnitude[n] = uint32_t{1} << p;
       if (negative) flags[n] |= kNegative;
+      ++significant_count[forest.level[n]];
     }
     if (sp >= 0 || significant) low_plane[n] = static_cast<int8_t>(p);
     flags[n] |= kSeen;
@@ -218,17 +243,56 @@ struct EncoderIo {
   const std::vector<uint32_t>& magnitude;
   const std::vector<uint32_t>& descendant_max;
   const std::vector<int32_t>& q;
+  bool raw_plane;  // the symbols go to the raw bit lists (see the top)
   ArithmeticEncoder enc;
+  std::vector<uint8_t> raw_refinement, raw_rest;  // one bit per entry
 
   int put(int bit, BitModel& m) {
-    enc.encode(bit, m);
+    if (raw_plane) {
+      raw_rest.push_back(static_cast<uint8_t>(bit));
+    } else {
+      enc.encode(bit, m);
+    }
     return bit;
   }
   int significance(uint32_t n, int p, BitModel& m) { return put(static_cast<int>((magnitude[n] >> p) & 1u), m); }
-  int refine(uint32_t n, int p, BitModel& m) { return put(static_cast<int>((magnitude[n] >> p) & 1u), m); }
+  int refine(uint32_t n, int p, BitModel& m) {
+    const int bit = static_cast<int>((magnitude[n] >> p) & 1u);
+    if (!raw_plane) return put(bit, m);
+    raw_refinement.push_back(static_cast<uint8_t>(bit));
+    return bit;
+  }
+  // The segment's bytes.
+  std::vector<uint8_t> finish() {
+    if (!raw_plane) return enc.finish();
+    std::vector<uint8_t> bytes((raw_refinement.size() + raw_rest.size() + 7) / 8, 0);
+    size_t k = 0;
+    for (const auto* list : {&raw_refinement, &raw_rest})
+      for (uint8_t bit : *list) {
+        bytes[k >> 3] = static_cast<uint8_t>(bytes[k >> 3] | (bit << (k & 7)));
+        ++k;
+      }
+    return bytes;
+  }
   int sign(uint32_t n, BitModel& m) { return put(q[n] < 0 ? 1 : 0, m); }
   int descendants(uint32_t n, int p, BitModel& m) { return put((descendant_max[n] >> p) != 0 ? 1 : 0, m); }
   bool ok() const { return true; }
+};
+
+// Bits [pos, bits) of a raw segment (see the top), read in order. Reading
+// past `bits` gives 0 and leaves ok() false.
+struct RawBits {
+  const uint8_t* data = nullptr;
+  size_t bits = 0;
+  size_t pos = 0;
+
+  int next() {
+    const int bit = pos < bits ? (data[pos >> 3] >> (pos & 7)) & 1 : 0;
+    ++pos;
+    return bit;
+  }
+  bool left() const { return pos < bits; }
+  bool ok() const { return pos <= bits; }
 };
 
 struct DecoderIo {
@@ -239,6 +303,18 @@ struct DecoderIo {
   int sign(uint32_t, BitModel& m) { return dec.decode(m); }
   int descendants(uint32_t, int, BitModel& m) { return dec.decode(m); }
   bool ok() const { return dec.ok(); }
+};
+
+// A raw plane's segment: the refinement bits, then the others (see the top).
+struct RawIo {
+  RawBits& refinement;
+  RawBits& rest;
+
+  int significance(uint32_t, int, BitModel&) { return rest.next(); }
+  int refine(uint32_t, int, BitModel&) { return refinement.next(); }
+  int sign(uint32_t, BitModel&) { return rest.next(); }
+  int descendants(uint32_t, int, BitModel&) { return rest.next(); }
+  bool ok() const { return refinement.ok() && rest.ok(); }
 };
 
 // What decode_level reads and writes besides the level's own node state.
@@ -325,6 +401,7 @@ bool decode_level(CoderState& state, const LevelContext& ctx, int p, int level, 
   bits = reached[w] & (~uint64_t{0} << (begin & 63));
   if (w == (end - 1) >> 6 && (end & 63) != 0) bits &= ~(~uint64_t{0} << (end & 63));
   uint32_t n = next_node();
+  uint32_t newly = 0;  // nodes found significant
   for (; n != end; n = next_node()) {
     if (!rc.room(kGroupSymbols)) {
       fast = false;
@@ -347,6 +424,7 @@ bool decode_level(CoderState& state, const LevelContext& ctx, int p, int level, 
       if (significant) {
         if (rc.decode(m.sign[sign_ctx])) f |= kNegative;
         ++count;
+        ++newly;
         sig_plane[n] = plane;
         low_plane[n] = plane;
         magnitude[n] = plane_bit;
@@ -371,6 +449,7 @@ bool decode_level(CoderState& state, const LevelContext& ctx, int p, int level, 
   }
   rc.store(dec);
   *symbols += count;
+  state.significant_count[level] += newly;
   if (fast) return true;
   // Near the end of the segment: the checked path for the rest.
   if constexpr (kLeaves) {
@@ -395,6 +474,7 @@ bool decode_level(CoderState& state, const LevelContext& ctx, int p, int level, 
       } else if (significant) {
         sig_plane[n] = plane;
         magnitude[n] = plane_bit;
+        ++state.significant_count[level];
       }
       if (sp >= 0 || significant) low_plane[n] = plane;
       flags[n] = static_cast<uint8_t>(f | kSeen | (negative ? kNegative : 0));
@@ -416,6 +496,153 @@ bool decode_level(CoderState& state, const LevelContext& ctx, int p, int level, 
     }
   }
   return true;
+}
+
+// Bit i set when node 64 w + i is in [begin, end) and significant
+// (sig_plane >= 0). Reads only the level's own sig_plane bytes, so that the
+// pipelined decode's threads never read what the other writes.
+uint64_t significant_mask(const int8_t* sig_plane, uint32_t w, uint32_t begin, uint32_t end) {
+  const uint32_t first = w << 6;
+  if (first >= begin && end - first >= 64) {
+#if defined(__SSE2__)
+    uint64_t insignificant = 0;  // the sign bits of the 64 bytes
+    for (int k = 0; k < 4; ++k) {
+      const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(sig_plane + first + 16 * k));
+      insignificant |= uint64_t{static_cast<uint32_t>(_mm_movemask_epi8(v))} << (16 * k);
+    }
+    return ~insignificant;
+#endif
+  }
+  uint64_t mask = 0;
+  for (uint32_t n = std::max(first, begin); n < std::min(first + 64, end); ++n)
+    mask |= uint64_t{sig_plane[n] >= 0 ? 1u : 0u} << (n - first);
+  return mask;
+}
+
+// A raw plane's segment of a level without children (the finest level, most
+// of the nodes), in its two passes over the reached nodes: the refinement
+// bits of the nodes already significant, then significance and sign of the
+// others. Each pass visits only its own nodes (masks from sig_plane, 64
+// nodes at a time) and decodes without a branch on the bits, so nothing is
+// mispredicted per node. `refinement_complete`: the segment holds all the
+// refinement bits (else only those are used).
+bool decode_leaves_raw(CoderState& state, const LevelContext& ctx, int p, int level, RawBits& refinement,
+                       RawBits& rest, bool refinement_complete, size_t* symbols) {
+  uint8_t* const flags = state.flags.data();
+  int8_t* const sig_plane = state.sig_plane.data();
+  int8_t* const low_plane = state.low_plane.data();
+  uint32_t* const magnitude = state.magnitude.data();
+  const uint64_t* const reached = ctx.reached;
+  const int8_t plane = static_cast<int8_t>(p);
+  const uint32_t begin = state.index.level_begin[level], end = state.index.level_begin[level + 1];
+  if (begin >= end) return true;
+  const uint32_t first_word = begin >> 6, last_word = (end - 1) >> 6;
+
+  // Pass 1: the refinement bits, as far as they go.
+  size_t count = 0;
+  for (uint32_t w = first_word; w <= last_word && refinement.left(); ++w) {
+    uint64_t bits = reached[w] & significant_mask(sig_plane, w, begin, end);
+    while (bits != 0 && refinement.left()) {
+      const uint32_t n = (w << 6) | static_cast<uint32_t>(__builtin_ctzll(bits));
+      bits &= bits - 1;
+      magnitude[n] |= static_cast<uint32_t>(refinement.next()) << p;
+      low_plane[n] = plane;
+      ++count;
+    }
+  }
+  *symbols += count;
+  if (!refinement_complete) return false;
+
+  // Pass 2: significance and sign of the reached nodes not yet significant:
+  // two bits read at once, the second used (and consumed) only after a 1.
+  const uint8_t* const data = rest.data;
+  size_t pos = rest.pos;
+  // While pos + 9 <= bits (pos < fast_end), the bytes at pos / 8 and pos / 8 + 1 are there.
+  const size_t fast_end = rest.bits >= 9 ? rest.bits - 8 : 0;
+  uint32_t newly = 0;
+  count = 0;
+  for (uint32_t w = first_word; w <= last_word; ++w) {
+    uint64_t bits = reached[w] & ~significant_mask(sig_plane, w, begin, end);
+    if (w == first_word) bits &= ~uint64_t{0} << (begin & 63);
+    if (w == last_word && (end & 63) != 0) bits &= ~(~uint64_t{0} << (end & 63));
+    while (bits != 0) {
+      const uint32_t n = (w << 6) | static_cast<uint32_t>(__builtin_ctzll(bits));
+      uint32_t significant, negative;
+      if (pos < fast_end) {
+        const uint32_t window = (uint32_t{data[pos >> 3]} | (uint32_t{data[(pos >> 3) + 1]} << 8)) >> (pos & 7);
+        significant = window & 1u;
+        negative = (window >> 1) & significant;
+        pos += 1 + significant;
+      } else {
+        // Near the end: a group whose bits are not all there ends decoding.
+        rest.pos = pos;
+        significant = static_cast<uint32_t>(rest.next());
+        negative = significant ? static_cast<uint32_t>(rest.next()) : 0u;
+        if (!rest.ok()) {
+          *symbols += count;
+          state.significant_count[level] += newly;
+          return false;
+        }
+        pos = rest.pos;
+      }
+      bits &= bits - 1;
+      // Insignificant nodes have sig_plane and low_plane -1 and magnitude 0.
+      const int8_t now = static_cast<int8_t>(static_cast<int>(significant) * (p + 1) - 1);
+      sig_plane[n] = now;
+      low_plane[n] = now;
+      magnitude[n] = significant << p;
+      flags[n] = static_cast<uint8_t>(flags[n] | kSeen | (negative ? kNegative : 0));
+      newly += significant;
+      count += 1 + significant;
+    }
+  }
+  rest.pos = pos;
+  *symbols += count;
+  state.significant_count[level] += newly;
+  return true;
+}
+
+// A raw plane's segment of a level with children (a coarser level: the
+// CoderState's own context), group by group with code_node. When a group's
+// bits are not all there, decoding stops, and the refinement bits of that
+// node and the later ones are still used.
+bool decode_raw_level(CoderState& state, const LevelContext& ctx, int p, int level, RawBits& refinement,
+                      RawBits& rest, bool refinement_complete, size_t* symbols, EventLog* log) {
+  assert(ctx.models == state.models.data() && ctx.reached == state.reached.data());
+  (void)ctx;
+  uint32_t stopped = 0;
+  bool complete = refinement_complete;
+  if (complete) {
+    RawIo io{refinement, rest};
+    complete = state.for_reached(level, [&](uint32_t n) {
+      const int8_t sp_before = state.sig_plane[n];
+      const uint8_t f_before = state.flags[n];
+      const size_t refinement_before = refinement.pos, rest_before = rest.pos;
+      if (!state.code_node(n, p, io, symbols)) {
+        refinement.pos = refinement_before;
+        rest.pos = rest_before;
+        stopped = n;
+        return false;
+      }
+      if (log != nullptr) {
+        if (sp_before < 0 && state.sig_plane[n] >= 0)
+          log->significant[log->significant_count++] = n | (state.flags[n] & kNegative ? uint32_t{1} << 31 : 0);
+        if (!(f_before & kDescendants) && (state.flags[n] & kDescendants))
+          log->descendants[log->descendants_count++] = n;
+      }
+      return true;
+    });
+    if (complete) return true;
+  }
+  state.for_reached(level, [&](uint32_t n) {
+    if (n >= stopped && state.sig_plane[n] >= 0 && refinement.left()) {
+      state.magnitude[n] |= static_cast<uint32_t>(refinement.next()) << p;
+      state.low_plane[n] = static_cast<int8_t>(p);
+      ++*symbols;
+    }
+    return true;
+  });
+  return false;
 }
 
 uint32_t magnitude_of(int32_t v) {
@@ -456,8 +683,9 @@ Status validate_forest(const CoefficientForest& forest) {
   return ok_status();
 }
 
-BitplaneStream encode_bitplanes(const CoefficientForest& forest, const std::vector<int32_t>& q) {
+BitplaneStream encode_bitplanes(const CoefficientForest& forest, const std::vector<int32_t>& q, int raw_planes) {
   assert(validate_forest(forest).ok());
+  assert(raw_planes >= 0 && raw_planes <= kMaxBitplane + 1);
   assert(q.size() == forest.parent.size());
   const size_t n = forest.parent.size();
   std::vector<uint32_t> magnitude(n), descendant_max(n, 0);
@@ -476,13 +704,13 @@ BitplaneStream encode_bitplanes(const CoefficientForest& forest, const std::vect
   if (out.top_plane < 0) return out;
 
   const ForestIndex index = build_index(forest);
-  CoderState state(forest, index);
+  CoderState state(forest, index, raw_planes);
   size_t symbols = 0;
   for (int p = out.top_plane; p >= 0; --p) {
     for (int l = 1; l <= index.max_level; ++l) {
-      EncoderIo io{magnitude, descendant_max, q, {}};
+      EncoderIo io{magnitude, descendant_max, q, p < raw_planes, {}, {}, {}};
       state.code_level(p, l, io, &symbols);
-      out.segments.push_back({p, l, io.enc.finish()});
+      out.segments.push_back({p, l, io.finish()});
     }
   }
   return out;
@@ -545,13 +773,25 @@ LevelContext own_context(CoderState& state) {
   return {state.models.data(), state.reached.data(), state.sig_plane.data(), state.flags.data()};
 }
 
-// Decodes (p, l) from `segment` with the CoderState's own context; false when
-// the segment ended before the level did.
+// Decodes (p, l) from `segment` with the context `ctx`; false when the
+// segment ended before the level did.
 bool decode_segment(CoderState& state, const LevelContext& ctx, const BitplaneSegmentView& segment, int p, int l,
                     size_t* symbols, EventLog* log, bool mark_children = true) {
-  ArithmeticDecoder dec(segment.data, segment.size);
-  return has_children(state.index, l) ? decode_level<false>(state, ctx, p, l, dec, symbols, log, mark_children)
-                                      : decode_level<true>(state, ctx, p, l, dec, symbols, nullptr);
+  const bool leaves = !has_children(state.index, l);
+  if (p >= state.raw_planes) {
+    ArithmeticDecoder dec(segment.data, segment.size);
+    return leaves ? decode_level<true>(state, ctx, p, l, dec, symbols, nullptr)
+                  : decode_level<false>(state, ctx, p, l, dec, symbols, log, mark_children);
+  }
+  // A raw plane: the refinement bits (one per node of the level already
+  // significant), then the rest.
+  const size_t refinement_bits = state.significant_count[static_cast<size_t>(l)];
+  const size_t present = segment.size > SIZE_MAX / 8 ? SIZE_MAX : 8 * segment.size;  // bits
+  RawBits refinement{segment.data, std::min(refinement_bits, present), 0};
+  RawBits rest{segment.data, present, std::min(refinement_bits, present)};
+  const bool complete = present >= refinement_bits;
+  return leaves ? decode_leaves_raw(state, ctx, p, l, refinement, rest, complete, symbols)
+                : decode_raw_level(state, ctx, p, l, refinement, rest, complete, symbols, log);
 }
 
 // Per (plane, level), the index of its segment in `segments`, or -1. The
@@ -659,8 +899,7 @@ bool decode_pipelined(CoderState& state, int top_plane, const std::vector<Bitpla
         fine_stop.store(p, std::memory_order_release);
         return;
       }
-      ArithmeticDecoder dec(segments[k].data, segments[k].size);
-      if (!decode_level<true>(state, fine_ctx, p, L, dec, &fine_symbols, nullptr)) {
+      if (!decode_segment(state, fine_ctx, segments[k], p, L, &fine_symbols, nullptr)) {
         fine_stop.store(p, std::memory_order_release);
         return;
       }
@@ -742,8 +981,11 @@ constexpr uint32_t kPipelineMinNodes = 1 << 14;
 
 StatusOr<std::vector<double>> decode_bitplanes(const CoefficientForest& forest, int top_plane,
                                                const std::vector<BitplaneSegmentView>& segments, int max_level,
-                                               BitplaneDecodeStats* stats, BitplaneThreads threads) {
+                                               BitplaneDecodeStats* stats, BitplaneThreads threads, int raw_planes) {
   SRCODEC_RETURN_IF_ERROR(validate_forest(forest));
+  if (raw_planes < 0 || raw_planes > kMaxBitplane + 1)
+    return parse_error("bit planes: " + std::to_string(raw_planes) + " raw planes, outside 0.." +
+                       std::to_string(kMaxBitplane + 1));
   if (top_plane < -1 || top_plane > kMaxBitplane)
     return parse_error("bit planes: top plane " + std::to_string(top_plane) + " outside -1.." +
                        std::to_string(kMaxBitplane));
@@ -764,12 +1006,12 @@ StatusOr<std::vector<double>> decode_bitplanes(const CoefficientForest& forest, 
   static const bool several_cores = std::thread::hardware_concurrency() > 1;
   const bool big = index.level_begin[levels + 1] - index.level_begin[levels] >= kPipelineMinNodes;
   if (can_pipeline && (threads == BitplaneThreads::kPipelined || (several_cores && big))) {
-    CoderState state(forest, index);
+    CoderState state(forest, index, raw_planes);
     if (decode_pipelined(state, top_plane, segments, levels, st)) return reconstruct(state);
     st = BitplaneDecodeStats{};
     st.last_complete_plane = top_plane + 1;
   }
-  CoderState state(forest, index);
+  CoderState state(forest, index, raw_planes);
   decode_sequential(state, top_plane, segments, levels, st);
   return reconstruct(state);
 }

@@ -41,9 +41,12 @@ struct BitplaneStream {
 };
 
 // `q`: per node, coefficient quantized in units of the finest step
-// (dead zone: q = sign * floor(|c| / step)). Preconditions (asserted):
-// validate_forest(forest).ok(), q.size() == nodes, q != INT32_MIN.
-BitplaneStream encode_bitplanes(const CoefficientForest& forest, const std::vector<int32_t>& q);
+// (dead zone: q = sign * floor(|c| / step)). `raw_planes`: the segments of
+// planes below it hold raw bits instead of arithmetic-coded symbols (see
+// bitplane.cpp); 0 writes the layout of .srm version 1. Preconditions
+// (asserted): validate_forest(forest).ok(), q.size() == nodes,
+// q != INT32_MIN, 0 <= raw_planes <= kMaxBitplane + 1.
+BitplaneStream encode_bitplanes(const CoefficientForest& forest, const std::vector<int32_t>& q, int raw_planes = 0);
 
 struct BitplaneSegmentView {
   int plane;
@@ -88,9 +91,11 @@ struct BitplaneDecodeStats {
 // whenever it can (for tests). All three give the same values and stats.
 enum class BitplaneThreads { kAuto, kSequential, kPipelined };
 
+// `raw_planes`: as the encoder's (an error outside 0..kMaxBitplane + 1).
+// Raw bits count as symbols in the stats.
 StatusOr<std::vector<double>> decode_bitplanes(const CoefficientForest& forest, int top_plane,
                                                const std::vector<BitplaneSegmentView>& segments, int max_level,
                                                BitplaneDecodeStats* stats = nullptr,
-                                               BitplaneThreads threads = BitplaneThreads::kAuto);
+                                               BitplaneThreads threads = BitplaneThreads::kAuto, int raw_planes = 0);
 
 }  // namespace srcodec

@@ -101,6 +101,8 @@ StatusOr<EncodedSrm> encode_srm(const SemiRegularMesh& mesh, const TriangleMesh&
     return invalid_argument("encode: the quantizer step and tangential factor must be positive");
   if (options.base_bits < 4 || options.base_bits > 24)
     return invalid_argument("encode: base position bits must be 4..24");
+  if (options.raw_planes < 0 || options.raw_planes > kSrmMaxPlane + 1)
+    return invalid_argument("encode: raw planes must be 0.." + std::to_string(kSrmMaxPlane + 1));
   const int levels = mesh.levels;
   if (levels < 0 || levels > kSrmMaxLevels)
     return invalid_argument("encode: " + std::to_string(levels) + " levels; the format holds 0.." +
@@ -122,6 +124,7 @@ StatusOr<EncodedSrm> encode_srm(const SemiRegularMesh& mesh, const TriangleMesh&
   h.grid_step = as_float(extent > 0 ? extent / ((1 << options.base_bits) - 1) : 1.0);
   h.quant_step = as_float(diagonal > 0 ? diagonal * options.step_fraction : options.step_fraction);
   h.tangential_factor = as_float(options.tangential_factor);
+  h.raw_planes = options.raw_planes;
 
   const int32_t nbase = mesh.hierarchy.base_vertex_count();
   // The base mesh carries the level-0 approximation (base vertices after the
@@ -159,7 +162,7 @@ StatusOr<EncodedSrm> encode_srm(const SemiRegularMesh& mesh, const TriangleMesh&
     const int32_t m = static_cast<int32_t>(std::min<double>(std::floor(units), kMaxQuantized));
     q[node] = value < 0 ? -m : m;
   }
-  const BitplaneStream stream = encode_bitplanes(layout.forest, q);
+  const BitplaneStream stream = encode_bitplanes(layout.forest, q, h.raw_planes);
   h.top_plane = stream.top_plane;
   std::vector<std::vector<uint8_t>> segments(static_cast<size_t>(h.top_plane + 1) * (levels + 1));
   for (const BitplaneSegment& s : stream.segments) {
@@ -280,7 +283,8 @@ StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const DecodeOptions& option
     }
   }
   BitplaneDecodeStats stats;
-  StatusOr<std::vector<double>> values = decode_bitplanes(layout.forest, h.top_plane, views, level + 1, &stats);
+  StatusOr<std::vector<double>> values = decode_bitplanes(layout.forest, h.top_plane, views, level + 1, &stats,
+                                                          BitplaneThreads::kAuto, h.raw_planes);
   if (!values.ok()) return values.status().with_context("coefficients");
   out.last_plane = stats.last_complete_plane > h.top_plane ? -1 : stats.last_complete_plane;
   const std::vector<double> steps = step_table(h);

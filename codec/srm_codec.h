@@ -26,6 +26,12 @@ struct EncodeOptions {
   // Base positions are coded on a grid of this many bits per coordinate; the
   // embedded stream refines them further (the base residual, level f = 0).
   int base_bits = 10;
+  // The symbols of this many lowest bit planes are written as raw bits, not
+  // arithmetic-coded (.srm version 2, codec/bitplane.cpp): they are close to
+  // even there, and raw bits decode several times faster. 0 writes version 1.
+  // (The cost of two planes, measured on the bunny and igea: docs/codec_speed.md,
+  // fifth session.)
+  int raw_planes = 2;
 };
 
 struct EncodedSrm {

@@ -29,6 +29,7 @@ void write_body(const SrmHeader& h, ByteWriter& w) {
   w.f32(static_cast<float>(h.quant_step));
   w.f32(static_cast<float>(h.tangential_factor));
   w.u8(static_cast<uint8_t>(h.top_plane + 1));
+  if (h.version() >= 2) w.u8(static_cast<uint8_t>(h.raw_planes));
   w.varint(h.base.length);
   w.u32(h.base.crc);
   for (const SrmChunkEntry& e : h.flags) {
@@ -79,7 +80,7 @@ Status read_counts_and_geometry(ByteReader& r, SrmHeader& h) {
   return ok_status();
 }
 
-Status read_quantization(ByteReader& r, SrmHeader& h) {
+Status read_quantization(ByteReader& r, int version, SrmHeader& h) {
   if (!read_f32(r, h.quant_step) || !read_f32(r, h.tangential_factor))
     return r.error("header", "the header ends early");
   if (!finite_positive(h.quant_step)) return r.error("header", "the quantizer step is not a positive number");
@@ -91,6 +92,15 @@ Status read_quantization(ByteReader& r, SrmHeader& h) {
     return r.error("header", "the top bit plane is " + std::to_string(top - 1) + ", above " +
                                  std::to_string(kSrmMaxPlane));
   h.top_plane = top - 1;
+  h.raw_planes = 0;
+  if (version >= 2) {
+    uint8_t raw = 0;
+    if (!r.u8(raw)) return r.error("header", "the header ends early");
+    if (raw < 1 || raw > kSrmMaxPlane + 1)
+      return r.error("header", std::to_string(raw) + " raw planes, not 1.." +
+                                   std::to_string(kSrmMaxPlane + 1) + " (version 2 has at least one)");
+    h.raw_planes = raw;
+  }
   return ok_status();
 }
 
@@ -134,9 +144,9 @@ StatusOr<uint64_t> parse_header(const uint8_t* data, size_t have, SrmHeader& h) 
                        std::to_string(kPreambleSize) + " an .srm header starts with");
   for (int i = 0; i < 4; ++i)
     if (data[i] != kMagic[i]) return parse_error("not an .srm file (its first bytes are not \\x89SRM)");
-  if (data[4] != kSrmVersion)
-    return unsupported(".srm version " + std::to_string(data[4]) + "; this srcodec reads version " +
-                       std::to_string(kSrmVersion));
+  if (data[4] < kSrmOldestVersion || data[4] > kSrmVersion)
+    return unsupported(".srm version " + std::to_string(data[4]) + "; this srcodec reads versions " +
+                       std::to_string(kSrmOldestVersion) + " to " + std::to_string(kSrmVersion));
   ByteReader pre(data + 6, 4, 6);
   uint32_t body = 0;
   (void)pre.u32(body);
@@ -154,7 +164,7 @@ StatusOr<uint64_t> parse_header(const uint8_t* data, size_t have, SrmHeader& h) 
                        ") fails its checksum: the file is corrupt");
   ByteReader r(data + kPreambleSize, body, kPreambleSize);
   SRCODEC_RETURN_IF_ERROR(read_counts_and_geometry(r, h));
-  SRCODEC_RETURN_IF_ERROR(read_quantization(r, h));
+  SRCODEC_RETURN_IF_ERROR(read_quantization(r, data[4], h));
   SRCODEC_RETURN_IF_ERROR(read_table(r, h));
   return header_size;
 }
@@ -207,7 +217,7 @@ std::vector<uint8_t> write_srm(SrmHeader header, const std::vector<uint8_t>& bas
   write_body(header, body);
   ByteWriter w;
   for (uint8_t m : kMagic) w.u8(m);
-  w.u8(kSrmVersion);
+  w.u8(static_cast<uint8_t>(header.version()));
   w.u8(0);
   w.u32(static_cast<uint32_t>(body.size()));
   w.bytes(body.data());

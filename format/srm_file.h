@@ -1,4 +1,4 @@
-// The .srm container, version 1 (byte layout: format/README.md): a header
+// The .srm container, versions 1 and 2 (byte layout: format/README.md): a header
 // with counts, bounding box, quantization and the table of every chunk's
 // length and checksum, then the base mesh chunk, one refinement-flag chunk per
 // level, and the coefficient segments in embedded order (bit-plane major,
@@ -17,7 +17,11 @@
 
 namespace srcodec {
 
-inline constexpr uint8_t kSrmVersion = 1;
+// The newest version this srcodec reads and writes. Version 2 adds raw
+// planes (SrmHeader::raw_planes); a file without them is written as
+// version 1, which every reader of version 1 decodes.
+inline constexpr uint8_t kSrmVersion = 2;
+inline constexpr uint8_t kSrmOldestVersion = 1;
 inline constexpr int kSrmMaxLevels = 12;
 inline constexpr int kSrmMaxPlane = 30;
 inline constexpr int kSrmComponents = 3;
@@ -42,12 +46,17 @@ struct SrmHeader {
   // Tangential detail components' step relative to normal ones.
   double tangential_factor = 1.0;
   int top_plane = -1;            // -1: every coefficient is zero
+  // The segments of planes below this hold raw bits, not an arithmetic-coded
+  // stream (codec/bitplane.cpp). 0..31; > 0 only in version 2.
+  int raw_planes = 0;
   SrmChunkEntry base;
   std::vector<SrmChunkEntry> flags;     // L: flags of level j's triangles decide level j + 1
   // The segments present, in stream order: (top_plane + 1) x (L + 1) in a
   // whole file, fewer in a file cut by the encoder's rate control.
   std::vector<SrmChunkEntry> segments;
 
+  // The version write_srm writes: 2 with raw planes, else 1.
+  int version() const { return raw_planes > 0 ? 2 : 1; }
   size_t segment_count() const { return static_cast<size_t>(top_plane + 1) * (levels + 1); }
   size_t segment_index(int plane, int f) const {
     return static_cast<size_t>(top_plane - plane) * (levels + 1) + f;

@@ -129,13 +129,15 @@ def main():
     os.makedirs(srm_dir, exist_ok=True)
     os.makedirs(mesh_dir, exist_ok=True)
 
-    with open(os.path.join(source, "tests", "data", "golden_v1.srm"), "rb") as f:
-        golden = f.read()
-    # (level byte, prefix byte): whole file at the finest level; level 0 with
-    # only its chunks loaded; level 2 from the first half, cut and by max_bytes.
-    for name, level, prefix in [("whole", 0, 0), ("level0_only", 0x80 | 1, 0),
-                                ("level2_half_cut", 3, 64), ("level2_half_max_bytes", 3, 0x80 | 64)]:
-        write(os.path.join(srm_dir, "golden_v1_" + name), bytes([level, prefix]) + golden)
+    # The golden files of versions 1 and 2 (raw planes).
+    for version in (1, 2):
+        with open(os.path.join(source, "tests", "data", "golden_v%d.srm" % version), "rb") as f:
+            golden = f.read()
+        # (level byte, prefix byte): whole file at the finest level; level 0 with
+        # only its chunks loaded; level 2 from the first half, cut and by max_bytes.
+        for name, level, prefix in [("whole", 0, 0), ("level0_only", 0x80 | 1, 0),
+                                    ("level2_half_cut", 3, 64), ("level2_half_max_bytes", 3, 0x80 | 64)]:
+            write(os.path.join(srm_dir, "golden_v%d_" % version + name), bytes([level, prefix]) + golden)
 
     with open(os.path.join(source, "tests", "data", "golden_v1_l0.obj"), "rb") as f:
         golden_obj = f.read()

@@ -1,11 +1,22 @@
 #!/usr/bin/env bash
-# Regenerates the golden .srm version-1 file and its decoded meshes that
-# tests/codec/golden_test.cpp pins. Run only when the format version changes
-# (a new version gets new golden files; version 1's stay as they are).
+# Regenerates the golden .srm file of one format version and its decoded
+# meshes, which tests/codec/golden_test.cpp pins. Run only when a new format
+# version comes (it gets new golden files; older versions' stay as they are):
+#   tools/make_golden.sh VERSION    (1 or 2; default 2)
+# Version 1: no raw planes, cut at 2500 bytes (inside the coded planes).
+# Version 2: the default raw planes, cut at 5400 bytes: inside plane 0, so
+# that raw segments of every level are decoded and the last one is cut.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bin=${SRCODEC:-build/tools/srcodec}
-"$bin" encode data/spot.obj -o tests/data/golden_v1.srm --levels 2 --base-vertices 100 --bytes 2500 -q
+version="${1:-2}"
+case "$version" in
+  1) rate=(--bytes 2500 --raw-planes 0) ;;
+  2) rate=(--bytes 5400) ;;
+  *) echo "make_golden.sh: no golden file for version $version" >&2; exit 2 ;;
+esac
+out="tests/data/golden_v$version"
+"$bin" encode data/spot.obj -o "$out.srm" --levels 2 --base-vertices 100 "${rate[@]}" -q
 for level in 0 1 2; do
-  "$bin" decode tests/data/golden_v1.srm -o tests/data/golden_v1_l$level.obj --level $level
+  "$bin" decode "$out.srm" -o "${out}_l$level.obj" --level $level
 done

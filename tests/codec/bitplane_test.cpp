@@ -91,6 +91,8 @@ int known_plane(double value, int32_t q) {
   return -2;
 }
 
+uint32_t magnitude_bits(int32_t q) { return static_cast<uint32_t>(std::abs(q)); }
+
 double squared_error(const std::vector<double>& v, const std::vector<int32_t>& q) {
   double e = 0;
   for (size_t i = 0; i < q.size(); ++i) e += (v[i] - q[i]) * (v[i] - q[i]);
@@ -182,8 +184,9 @@ std::vector<BitplaneSegmentView> cut_views(const BitplaneStream& stream, size_t 
 
 // Decodes the stream cut after `cut` bytes (cut_views).
 std::vector<double> decode_cut(const Synthetic& s, const BitplaneStream& stream, size_t cut,
-                               BitplaneDecodeStats* stats) {
-  auto v = decode_bitplanes(s.forest, stream.top_plane, cut_views(stream, cut), 255, stats);
+                               BitplaneDecodeStats* stats, int raw_planes = 0) {
+  auto v = decode_bitplanes(s.forest, stream.top_plane, cut_views(stream, cut), 255, stats, BitplaneThreads::kAuto,
+                            raw_planes);
   EXPECT_TRUE(v.ok()) << v.status().message();
   return v.ok() ? v.value() : std::vector<double>();
 }
@@ -194,9 +197,10 @@ std::vector<double> decode_cut(const Synthetic& s, const BitplaneStream& stream,
 // error against q must also fall. (Not per byte: a refinement bit can move a
 // single node's midpoint away from q: |q| = 23 known in [16, 32) gives 24,
 // then in [16, 24) gives 20. Only the uncertainty shrinks for every node.)
-TEST(Bitplane, EveryCutImprovesMonotonically) {
+// `raw_planes`: the encoder's and decoder's raw planes.
+void check_every_cut(int raw_planes) {
   const Synthetic s = make_synthetic(40, 4, 400.0, 21, 0.02);
-  const BitplaneStream stream = encode_bitplanes(s.forest, s.q);
+  const BitplaneStream stream = encode_bitplanes(s.forest, s.q, raw_planes);
   const size_t total = stream_bytes(stream);
   ASSERT_GT(total, 1000u);
   std::vector<std::pair<size_t, bool>> cuts;  // (bytes, check the error)
@@ -214,7 +218,7 @@ TEST(Bitplane, EveryCutImprovesMonotonically) {
   size_t symbols_before = 0;
   for (const auto& [cut, check_error] : cuts) {
     BitplaneDecodeStats stats;
-    const std::vector<double> v = decode_cut(s, stream, cut, &stats);
+    const std::vector<double> v = decode_cut(s, stream, cut, &stats, raw_planes);
     ASSERT_EQ(v.size(), s.q.size());
     for (size_t i = 0; i < s.q.size(); ++i) {
       const int lp = known_plane(v[i], s.q[i]);
@@ -235,7 +239,114 @@ TEST(Bitplane, EveryCutImprovesMonotonically) {
     }
   }
   BitplaneDecodeStats stats;
-  expect_exact(decode_cut(s, stream, total, &stats), s.q, 255, s.forest);
+  expect_exact(decode_cut(s, stream, total, &stats, raw_planes), s.q, 255, s.forest);
+}
+
+TEST(Bitplane, EveryCutImprovesMonotonically) { check_every_cut(0); }
+
+TEST(Bitplane, EveryCutImprovesMonotonicallyWithRawPlanes) { check_every_cut(3); }
+
+// Raw planes: the same values and symbol count as the coded stream, the
+// segments of the planes above them byte for byte the same, and a segment
+// cut inside or just after its refinement bits (which come first) still uses
+// every refinement bit it holds.
+TEST(Bitplane, RawPlanes) {
+  const Synthetic s = make_synthetic(40, 4, 400.0, 31, 0.02);
+  const BitplaneStream coded = encode_bitplanes(s.forest, s.q);
+  for (int raw : {1, 3, coded.top_plane + 1}) {
+    const BitplaneStream stream = encode_bitplanes(s.forest, s.q, raw);
+    ASSERT_EQ(stream.top_plane, coded.top_plane);
+    ASSERT_EQ(stream.segments.size(), coded.segments.size());
+    for (size_t k = 0; k < stream.segments.size(); ++k) {
+      if (stream.segments[k].plane >= raw) {
+        ASSERT_EQ(stream.segments[k].bytes, coded.segments[k].bytes) << raw << " " << k;
+      }
+    }
+    BitplaneDecodeStats stats, coded_stats;
+    auto v = decode_bitplanes(s.forest, stream.top_plane, views_of(stream), 255, &stats, BitplaneThreads::kAuto, raw);
+    ASSERT_TRUE(v.ok()) << v.status().message();
+    expect_exact(v.value(), s.q, 255, s.forest);
+    EXPECT_TRUE(stats.complete);
+    ASSERT_TRUE(decode_bitplanes(s.forest, coded.top_plane, views_of(coded), 255, &coded_stats).ok());
+    EXPECT_EQ(stats.symbols, coded_stats.symbols);  // raw bits count as symbols
+    // Read as a coded stream, the same bytes give other values.
+    auto wrong = decode_bitplanes(s.forest, stream.top_plane, views_of(stream), 255);
+    ASSERT_TRUE(wrong.ok());
+    EXPECT_FALSE(wrong.value() == v.value()) << raw;
+  }
+  EXPECT_FALSE(decode_bitplanes(s.forest, coded.top_plane, views_of(coded), 255, nullptr, BitplaneThreads::kAuto, -1)
+                   .ok());
+  EXPECT_FALSE(decode_bitplanes(s.forest, coded.top_plane, views_of(coded), 255, nullptr, BitplaneThreads::kAuto,
+                                kMaxBitplane + 2)
+                   .ok());
+
+  // The segments of plane 1 with raw planes 2, of level 1 (with children: D
+  // bits too) and of the finest level: their refinement bits are one per node
+  // of the level significant above plane 1, and a cut uses all it holds, also
+  // when the groups after them stop early.
+  const int raw = 2, L = s.forest.level.back();
+  const BitplaneStream stream = encode_bitplanes(s.forest, s.q, raw);
+  for (int level : {1, L}) {
+    size_t offset = 0, k = 0;
+    while (!(stream.segments[k].plane == 1 && stream.segments[k].level == level))
+      offset += stream.segments[k++].bytes.size();
+    size_t earlier = 0;  // nodes of `level` significant above plane 1
+    for (size_t i = 0; i < s.q.size(); ++i)
+      if (s.forest.level[i] == level && (magnitude_bits(s.q[i]) >> 2) != 0) ++earlier;
+    const size_t raw_bytes = (earlier + 7) / 8;
+    ASSERT_GT(raw_bytes, 4u) << level;
+    const size_t size = stream.segments[k].bytes.size();
+    ASSERT_GT(size, raw_bytes) << level;
+    // Nodes of `level` known down to plane 1 that were significant above it.
+    const auto refined = [&](const std::vector<double>& v) {
+      size_t n = 0;
+      for (size_t i = 0; i < s.q.size(); ++i)
+        if (s.forest.level[i] == level && (magnitude_bits(s.q[i]) >> 2) != 0 && known_plane(v[i], s.q[i]) == 1) ++n;
+      return n;
+    };
+    for (size_t bytes : {size_t{0}, size_t{1}, size_t{3}, raw_bytes - 1, raw_bytes, raw_bytes + 1}) {
+      if (bytes >= size) continue;  // (a cut inside the segment)
+      BitplaneDecodeStats stats;
+      const std::vector<double> v = decode_cut(s, stream, offset + bytes, &stats, raw);
+      ASSERT_EQ(v.size(), s.q.size());
+      EXPECT_FALSE(stats.complete);
+      EXPECT_EQ(stats.stop_plane, 1);
+      EXPECT_EQ(stats.stop_level, level);
+      EXPECT_EQ(refined(v), std::min(earlier, 8 * bytes)) << level << " " << bytes;
+    }
+  }
+}
+
+// A raw segment without refinement bits and shorter than two bytes (only the
+// checked reads may touch it): a root with one child, q = {0, 3}, top plane
+// 1; the child's segment of plane 1 holds its significance and sign bits.
+TEST(Bitplane, ShortRawSegmentsWithoutRefinementBits) {
+  const CoefficientForest f{{-1, 0}, {1, 2}, {0, 1}};
+  const std::vector<int32_t> q = {0, -3};
+  const BitplaneStream stream = encode_bitplanes(f, q, 2);
+  ASSERT_EQ(stream.top_plane, 1);
+  ASSERT_EQ(stream.segments.size(), 4u);
+  ASSERT_EQ(stream.segments[1].level, 2);
+  ASSERT_EQ(stream.segments[1].bytes.size(), 1u);
+  for (BitplaneThreads threads : {BitplaneThreads::kSequential, BitplaneThreads::kPipelined}) {
+    auto v = decode_bitplanes(f, stream.top_plane, views_of(stream), 2, nullptr, threads, 2);
+    ASSERT_TRUE(v.ok());
+    expect_exact(v.value(), q, 2, f);
+    // The child's segment exactly one byte long on the heap, and empty with no data.
+    const std::vector<uint8_t> one = stream.segments[1].bytes;
+    std::vector<BitplaneSegmentView> views = views_of(stream);
+    views[1] = {1, 2, one.data(), one.size()};
+    v = decode_bitplanes(f, stream.top_plane, views, 2, nullptr, threads, 2);
+    ASSERT_TRUE(v.ok());
+    expect_exact(v.value(), q, 2, f);
+    views[1] = {1, 2, nullptr, 0};
+    BitplaneDecodeStats stats;
+    v = decode_bitplanes(f, stream.top_plane, views, 2, &stats, threads, 2);
+    ASSERT_TRUE(v.ok());
+    EXPECT_EQ(v.value()[1], 0.0);
+    EXPECT_EQ(stats.stop_plane, 1);
+    EXPECT_EQ(stats.stop_level, 2);
+  }
 }
 
 TEST(Bitplane, NoSegmentsGiveZeros) {
@@ -400,10 +511,10 @@ TEST(Bitplane, GarbageDecodesWithoutCrash) {
 // must then fall back: the coarser thread may already have decoded the next
 // plane), and garbage.
 void expect_same_decode(const CoefficientForest& forest, int top, const std::vector<BitplaneSegmentView>& views,
-                        int max_level, const std::string& what) {
+                        int max_level, const std::string& what, int raw_planes = 0) {
   BitplaneDecodeStats seq_stats, pipe_stats;
-  auto seq = decode_bitplanes(forest, top, views, max_level, &seq_stats, BitplaneThreads::kSequential);
-  auto pipe = decode_bitplanes(forest, top, views, max_level, &pipe_stats, BitplaneThreads::kPipelined);
+  auto seq = decode_bitplanes(forest, top, views, max_level, &seq_stats, BitplaneThreads::kSequential, raw_planes);
+  auto pipe = decode_bitplanes(forest, top, views, max_level, &pipe_stats, BitplaneThreads::kPipelined, raw_planes);
   ASSERT_EQ(seq.ok(), pipe.ok()) << what;
   if (!seq.ok()) return;
   ASSERT_TRUE(seq.value() == pipe.value()) << what;
@@ -417,13 +528,16 @@ void expect_same_decode(const CoefficientForest& forest, int top, const std::vec
 
 TEST(Bitplane, PipelinedDecodeEqualsSequential) {
   std::mt19937 rng(5);
+  // Without and with raw planes (the finest level's thread counts
+  // its own significant nodes to find where a segment's coded part starts).
+  for (int raw : {0, 2})
   for (uint32_t seed = 1; seed <= 3; ++seed) {
     const Synthetic s = make_synthetic(12 + 5 * seed, 4 + seed % 2, 300.0, 40 + seed, seed == 2 ? 0.05 : 0.0);
-    const BitplaneStream stream = encode_bitplanes(s.forest, s.q);
+    const BitplaneStream stream = encode_bitplanes(s.forest, s.q, raw);
     const int levels = s.forest.level.back();
     const std::vector<BitplaneSegmentView> all = views_of(stream);
     for (int max_level : {1, 2, levels - 1, levels, 255})
-      expect_same_decode(s.forest, stream.top_plane, all, max_level, "whole, max level " + std::to_string(max_level));
+      expect_same_decode(s.forest, stream.top_plane, all, max_level, "whole, max level " + std::to_string(max_level), raw);
     // Cuts: at, before and after each segment's end, and in its middle.
     size_t offset = 0;
     std::vector<size_t> cuts;
@@ -434,7 +548,7 @@ TEST(Bitplane, PipelinedDecodeEqualsSequential) {
       offset += seg.bytes.size();
     }
     for (size_t cut : cuts)
-      expect_same_decode(s.forest, stream.top_plane, cut_views(stream, cut), 255, "cut " + std::to_string(cut));
+      expect_same_decode(s.forest, stream.top_plane, cut_views(stream, cut), 255, "cut " + std::to_string(cut), raw);
     // One segment missing or cut short (to half, or empty) with all the later
     // ones present: every segment in turn.
     for (size_t k = 0; k < all.size(); ++k) {
@@ -446,7 +560,7 @@ TEST(Bitplane, PipelinedDecodeEqualsSequential) {
           views[k].size = how == 1 ? views[k].size / 2 : 0;
         }
         expect_same_decode(s.forest, stream.top_plane, views, 255,
-                           "segment " + std::to_string(k) + " altered " + std::to_string(how));
+                           "segment " + std::to_string(k) + " altered " + std::to_string(how), raw);
       }
     }
     // Flipped bytes.
@@ -460,7 +574,7 @@ TEST(Bitplane, PipelinedDecodeEqualsSequential) {
       std::vector<BitplaneSegmentView> views;
       for (size_t k = 0; k < bytes.size(); ++k)
         views.push_back({stream.segments[k].plane, stream.segments[k].level, bytes[k].data(), bytes[k].size()});
-      expect_same_decode(s.forest, stream.top_plane, views, 255, "flipped bytes, try " + std::to_string(t));
+      expect_same_decode(s.forest, stream.top_plane, views, 255, "flipped bytes, try " + std::to_string(t), raw);
     }
   }
   // Garbage under a made-up top plane.
@@ -478,7 +592,7 @@ TEST(Bitplane, PipelinedDecodeEqualsSequential) {
     size_t k = 0;
     for (int p = top; p >= 0; --p)
       for (int l = 1; l <= 4; ++l, ++k) views.push_back({p, l, bytes[k].data(), bytes[k].size()});
-    expect_same_decode(s.forest, top, views, 255, "garbage, try " + std::to_string(t));
+    expect_same_decode(s.forest, top, views, 255, "garbage, try " + std::to_string(t), t % 3);
   }
 }
 

@@ -15,8 +15,10 @@
 namespace srcodec {
 namespace {
 
-std::vector<uint8_t> golden() {
-  const std::string s = read_file_bytes(test::source_path("tests/data/golden_v1.srm")).value();
+// The golden file of .srm version 1 or 2 (raw planes).
+std::vector<uint8_t> golden(int version = 1) {
+  const std::string s =
+      read_file_bytes(test::source_path("tests/data/golden_v" + std::to_string(version) + ".srm")).value();
   return std::vector<uint8_t>(s.begin(), s.end());
 }
 
@@ -45,29 +47,78 @@ bool try_decode(const std::vector<uint8_t>& bytes, int level = -1) {
 }
 
 TEST(HostileSrm, EveryCutOfTheGoldenFile) {
-  const std::vector<uint8_t> file = golden();
-  const SrmFile whole = parse_srm(file.data(), file.size()).value();
-  // From the end of the header on, every prefix decodes (inside the base
-  // mesh, to the base triangles before the cut).
-  const uint64_t decodable = whole.header_size;
-  for (size_t n = 0; n <= file.size(); ++n) {
-    const std::vector<uint8_t> cut(file.begin(), file.begin() + static_cast<std::ptrdiff_t>(n));
-    EXPECT_EQ(try_decode(cut), n >= decodable) << n;
+  for (int version : {1, 2}) {
+    const std::vector<uint8_t> file = golden(version);
+    const SrmFile whole = parse_srm(file.data(), file.size()).value();
+    // From the end of the header on, every prefix decodes (inside the base
+    // mesh, to the base triangles before the cut).
+    const uint64_t decodable = whole.header_size;
+    for (size_t n = 0; n <= file.size(); ++n) {
+      const std::vector<uint8_t> cut(file.begin(), file.begin() + static_cast<std::ptrdiff_t>(n));
+      EXPECT_EQ(try_decode(cut), n >= decodable) << version << " " << n;
+    }
   }
 }
 
 TEST(HostileSrm, AThousandSeededMutations) {
-  const std::vector<uint8_t> file = golden();
-  std::mt19937 rng(2026);
-  int meshes = 0;
-  for (int trial = 0; trial < 1000; ++trial) {
-    std::vector<uint8_t> b = file;
-    const int edits = 1 + static_cast<int>(rng() % 8);
-    for (int k = 0; k < edits; ++k) b[rng() % b.size()] = static_cast<uint8_t>(rng());
-    meshes += try_decode(b, trial % 3 == 0 ? 1 : -1);
+  for (int version : {1, 2}) {
+    const std::vector<uint8_t> file = golden(version);
+    std::mt19937 rng(2026);
+    int meshes = 0;
+    for (int trial = 0; trial < 1000; ++trial) {
+      std::vector<uint8_t> b = file;
+      const int edits = 1 + static_cast<int>(rng() % 8);
+      for (int k = 0; k < edits; ++k) b[rng() % b.size()] = static_cast<uint8_t>(rng());
+      meshes += try_decode(b, trial % 3 == 0 ? 1 : -1);
+    }
+    // Checksums catch nearly every mutation; those that pass must be harmless.
+    EXPECT_LT(meshes, 100) << version;
   }
-  // Checksums catch nearly every mutation; those that pass must be harmless.
-  EXPECT_LT(meshes, 100);
+}
+
+// Version 2's raw plane count, rewritten with a valid checksum: 1..31 decode
+// (a wrong count gives a wrong mesh, not a crash), 0 and 32 are refused. And
+// raw segments of random bytes with valid checksums decode safely.
+TEST(HostileSrm, RawPlaneCountsAndRawSegmentsWithValidChecksums) {
+  const std::vector<uint8_t> file = golden(2);
+  const SrmFile whole = parse_srm(file.data(), file.size()).value();
+  ASSERT_EQ(whole.header.raw_planes, 2);
+  std::vector<std::vector<uint8_t>> flags, segments;
+  for (const auto& c : whole.flags) flags.push_back(c.bytes);
+  for (const auto& c : whole.segments) segments.push_back(c.bytes);
+  for (int raw : {1, 3, 13, kSrmMaxPlane + 1}) {
+    SrmHeader h = whole.header;
+    h.raw_planes = raw;
+    EXPECT_TRUE(try_decode(write_srm(h, whole.base.bytes, flags, segments))) << raw;
+  }
+  // The count is the byte after the top plane's; find it by writing one.
+  const std::vector<uint8_t> bytes = write_srm(whole.header, whole.base.bytes, flags, segments);
+  SrmHeader h3 = whole.header;
+  h3.raw_planes = 3;
+  const std::vector<uint8_t> three = write_srm(h3, whole.base.bytes, flags, segments);
+  ASSERT_EQ(bytes.size(), three.size());
+  size_t at = 0;
+  while (at < bytes.size() && bytes[at] == three[at]) ++at;
+  ASSERT_EQ(bytes[at], 2);
+  for (int raw : {0, kSrmMaxPlane + 2, 255}) {
+    std::vector<uint8_t> b = bytes;
+    b[at] = static_cast<uint8_t>(raw);
+    const uint64_t header_end = whole.header_size - 4;
+    const uint32_t crc = crc32(b.data(), header_end);
+    for (int i = 0; i < 4; ++i) b[header_end + i] = static_cast<uint8_t>(crc >> (8 * i));
+    StatusOr<SrmFile> f = parse_srm(b.data(), b.size());
+    ASSERT_FALSE(f.ok()) << raw;
+    EXPECT_NE(f.status().message().find("raw planes"), std::string::npos) << f.status().message();
+  }
+  std::mt19937 rng(7);
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<std::vector<uint8_t>> noisy = segments;
+    for (auto& s : noisy) {
+      s.resize(trial % 2 ? s.size() : rng() % (2 * s.size() + 2));
+      for (auto& x : s) x = static_cast<uint8_t>(rng());
+    }
+    (void)try_decode(write_srm(whole.header, whole.base.bytes, flags, noisy), trial % 3 - 1);
+  }
 }
 
 TEST(HostileSrm, HeaderCountsAtTheirLimitsWithValidChecksums) {
@@ -94,11 +145,16 @@ TEST(HostileSrm, HeaderCountsAtTheirLimitsWithValidChecksums) {
 TEST(HostileSrm, EmptyFutureAndPaddedFiles) {
   EXPECT_FALSE(try_decode({}));
   std::vector<uint8_t> future = golden();
-  future[4] = 2;
+  future[4] = kSrmVersion + 1;
   StatusOr<SrmFile> f = parse_srm(future.data(), future.size());
   ASSERT_FALSE(f.ok());
   EXPECT_EQ(f.status().code(), StatusCode::kUnsupported);
-  EXPECT_NE(f.status().message().find("version 2"), std::string::npos) << f.status().message();
+  EXPECT_NE(f.status().message().find("version " + std::to_string(kSrmVersion + 1)), std::string::npos)
+      << f.status().message();
+  future[4] = 0;
+  f = parse_srm(future.data(), future.size());
+  ASSERT_FALSE(f.ok());
+  EXPECT_EQ(f.status().code(), StatusCode::kUnsupported);
   std::vector<uint8_t> padded = golden();
   padded.push_back(0);
   f = parse_srm(padded.data(), padded.size());

@@ -102,9 +102,13 @@ TEST(SrmCodec, FullStreamReconstructsEveryLevelsConnectivityAndTheFinestPosition
   }
 }
 
-TEST(SrmCodec, EveryPrefixFromTheHeaderOnDecodesAndDistortionDoesNotGrow) {
+// `raw_planes`: the encoder's (0: version 1).
+void check_every_prefix(int raw_planes) {
   const Case c = make_case(4, true, 3);
-  const EncodedSrm e = encode_srm(c.srm, c.input).value();
+  EncodeOptions options;
+  options.raw_planes = raw_planes;
+  const EncodedSrm e = encode_srm(c.srm, c.input, options).value();
+  ASSERT_EQ(e.bytes[4], raw_planes > 0 ? 2 : 1);
   const DecodedSrm full = decode_bytes(e.bytes).value();
   SrmFile layout = parse_srm(e.bytes.data(), e.bytes.size()).value();
   const uint64_t first_segment = layout.segments.front().offset;
@@ -139,6 +143,50 @@ TEST(SrmCodec, EveryPrefixFromTheHeaderOnDecodesAndDistortionDoesNotGrow) {
     previous = error;
   }
   EXPECT_EQ(previous, 0.0);
+}
+
+TEST(SrmCodec, EveryPrefixFromTheHeaderOnDecodesAndDistortionDoesNotGrow) {
+  check_every_prefix(EncodeOptions{}.raw_planes);
+}
+
+TEST(SrmCodec, EveryPrefixOfAVersion1FileDecodesAndDistortionDoesNotGrow) { check_every_prefix(0); }
+
+// Raw planes change the bytes of the lowest planes only, and the whole
+// stream decodes to exactly the mesh of version 1's; so do cuts above them.
+TEST(SrmCodec, RawPlanesDecodeToTheVersion1Mesh) {
+  const Case c = make_case(4, false, 6);
+  EncodeOptions v1_options;
+  v1_options.raw_planes = 0;
+  const EncodedSrm v1 = encode_srm(c.srm, c.input, v1_options).value();
+  EXPECT_EQ(v1.bytes[4], 1);
+  EXPECT_EQ(v1.header.raw_planes, 0);
+  const SrmFile f1 = parse_srm(v1.bytes.data(), v1.bytes.size()).value();
+  const DecodedSrm d1 = decode_bytes(v1.bytes).value();
+  for (int raw : {1, 2, 3}) {
+    EncodeOptions options;
+    options.raw_planes = raw;
+    const EncodedSrm v2 = encode_srm(c.srm, c.input, options).value();
+    EXPECT_EQ(v2.bytes[4], 2);
+    EXPECT_EQ(v2.header.raw_planes, raw);
+    const SrmFile f2 = parse_srm(v2.bytes.data(), v2.bytes.size()).value();
+    ASSERT_EQ(f2.segments.size(), f1.segments.size());
+    uint64_t coded = 0;  // segment bytes of the planes above the raw ones
+    for (int p = f1.header.top_plane; p >= raw; --p)
+      for (int f = 0; f <= 4; ++f) {
+        const size_t k = f1.header.segment_index(p, f);
+        ASSERT_EQ(f2.segments[k].bytes, f1.segments[k].bytes) << raw << " " << p << " " << f;
+        coded += f1.segments[k].declared;
+      }
+    const DecodedSrm d2 = decode_bytes(v2.bytes).value();
+    ASSERT_EQ(d2.mesh.triangles, d1.mesh.triangles);
+    ASSERT_TRUE(d2.mesh.positions == d1.mesh.positions) << raw;
+    // Cut at the end of the coded planes (the raw ones are absent): the
+    // same mesh as version 1's cut there, and a different one from the whole.
+    const DecodedSrm c1 = decode_bytes(v1.bytes, f1.segments.front().offset + coded).value();
+    const DecodedSrm c2 = decode_bytes(v2.bytes, f2.segments.front().offset + coded).value();
+    ASSERT_TRUE(c2.mesh.positions == c1.mesh.positions) << raw;
+    EXPECT_FALSE(c2.mesh.positions == d2.mesh.positions) << raw;
+  }
 }
 
 TEST(SrmCodec, CutInsideTheFlagsDecodesTheLevelBelow) {

@@ -2,7 +2,9 @@
 // (issue: encode/decode). For each mesh: remesh once (not timed here), then
 //  - srcodec encode without the remeshing: encode_srm, median of runs;
 //  - srcodec decode to the finest level: parse + decode_srm of the whole
-//    stream and of a rate-controlled file, median of runs, in output
+//    stream, of a file holding a tenth of its coefficient bytes and of the
+//    file `srcodec encode` writes with no rate option (1 dB below the whole
+//    stream's PSNR, tools/srcodec/cmd_encode.cpp), median of runs, in output
 //    triangles per second;
 //  - Draco decode of the input mesh (cl 10, qp 11 and 14), median of runs, in
 //    output triangles per second;
@@ -10,11 +12,14 @@
 //    PSNR against the input (surface_distance with its defaults, as `srcodec
 //    compare` measures), then the shortest cut of the srcodec stream reaching
 //    that PSNR, found by `srcodec encode --psnr`'s own rate control
-//    (tools/measure/rate_control.h), and its decode timed.
+//    (tools/measure/rate_control.h), and its decode timed;
+//  - per mesh, each srcodec decode's rate over the faster Draco decode's in
+//    this run (the figure to take medians of across runs).
 // Usage: codec_speed MESH... [--levels L] [--runs N] [--cache DIR]
 // --cache DIR keeps each encoded stream in DIR (named after the mesh and L)
 // and reuses it on later runs, skipping the remeshing and the encode timing:
-// for iterating on the decoder. The equal-quality cuts are cached there too.
+// for iterating on the decoder. The equal-quality cuts and the default file
+// are cached there too.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -134,8 +139,27 @@ int run(const std::string& path, int levels, int runs, const std::string& cache_
   uint64_t segment_bytes = 0;
   for (const SrmChunk& c : whole.segments) segment_bytes += c.declared;
   const std::vector<uint8_t> tenth = truncate_srm(encoded.bytes, segment_bytes / 10).value();
+  // The file `srcodec encode` writes with no rate option: 1 dB below the
+  // whole stream's PSNR (cached with the stream).
+  const std::string default_cached = cache_dir.empty() ? "" : cache_path(cache_dir, path, levels, ".default");
+  std::vector<uint8_t> default_file = default_cached.empty() ? std::vector<uint8_t>{} : read_bytes(default_cached);
+  if (default_file.empty()) {
+    const StreamCutter cutter(input.value(), encoded.bytes);
+    StatusOr<double> best = cutter.psnr(cutter.segment_bytes(), 60000);
+    StatusOr<uint64_t> kept = best.ok() ? segment_bytes_for_psnr(cutter, best.value() - 1.0) : best.status();
+    StatusOr<std::vector<uint8_t>> cut = kept.ok() ? cutter.cut(kept.value()) : kept.status();
+    if (!cut.ok()) {
+      std::fprintf(stderr, "%s\n", cut.status().message().c_str());
+      return 1;
+    }
+    default_file = std::move(cut.value());
+    if (!default_cached.empty()) write_bytes(default_cached, default_file);
+  }
   const auto [full_ms, full_tris] = time_decode(encoded.bytes, runs);
   const auto [tenth_ms, tenth_tris] = time_decode(tenth, runs);
+  const auto [default_ms, default_tris] = time_decode(default_file, runs);
+  const SrmFile parsed_default = parse_srm(default_file.data(), default_file.size()).value();
+  const double default_psnr = psnr_of(input.value(), decode_srm(parsed_default).value().mesh);
   if (encode_ms >= 0)
     std::printf("| %s | srcodec encode (no remesh) | %zu B | %.1f ms | |\n", path.c_str(), encoded.bytes.size(),
                 encode_ms);
@@ -143,12 +167,17 @@ int run(const std::string& path, int levels, int runs, const std::string& cache_
               encoded.bytes.size(), full_ms, full_tris / full_ms / 1e3);
   std::printf("| %s | srcodec decode, 1/10 of the stream | %zu B | %.1f ms | %.2f M tri/s |\n", path.c_str(),
               tenth.size(), tenth_ms, tenth_tris / tenth_ms / 1e3);
+  std::printf("| %s | srcodec decode, default file (%.2f dB) | %zu B | %.1f ms | %.2f M tri/s |\n", path.c_str(),
+              default_psnr, default_file.size(), default_ms, default_tris / default_ms / 1e3);
+  double draco_best = 0;  // the faster Draco decode's output triangles per ms
+  std::vector<std::pair<int, double>> equal_rates;  // (qp, triangles per ms) at Draco qp's PSNR
   for (int qp : {11, 14}) {
     DracoOptions d;
     d.quantization_bits = qp;
     const DracoRoundTrip trip = draco_round_trip(input.value(), d).value();
     size_t tris = 0;
     const double ms = median_ms(runs, [&] { tris = draco_decode(trip.encoded).value().triangles.size(); });
+    draco_best = std::max(draco_best, tris / ms);
     const double draco_psnr = psnr_of(input.value(), trip.decoded);
     std::printf("| %s | Draco decode qp %d (%.2f dB) | %zu B | %.1f ms | %.2f M tri/s |\n", path.c_str(), qp,
                 draco_psnr, trip.encoded.size(), ms, tris / ms / 1e3);
@@ -177,7 +206,13 @@ int run(const std::string& path, int levels, int runs, const std::string& cache_
     const double equal_psnr = psnr_of(input.value(), decode_srm(equal_file).value().mesh);
     std::printf("| %s | srcodec decode at Draco qp %d's PSNR (%.2f dB) | %zu B | %.1f ms | %.2f M tri/s |\n",
                 path.c_str(), qp, equal_psnr, equal.size(), equal_ms, equal_tris / equal_ms / 1e3);
+    equal_rates.push_back({qp, equal_tris / equal_ms});
   }
+  std::printf("| %s | over the faster Draco decode | whole %.3fx, tenth %.3fx, default %.3fx", path.c_str(),
+              full_tris / full_ms / draco_best, tenth_tris / tenth_ms / draco_best,
+              default_tris / default_ms / draco_best);
+  for (const auto& [qp, rate] : equal_rates) std::printf(", at qp %d's PSNR %.3fx", qp, rate / draco_best);
+  std::printf(" | | |\n");
   std::fflush(stdout);
   return 0;
 }

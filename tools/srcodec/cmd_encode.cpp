@@ -26,6 +26,7 @@ struct EncodeCliOptions {
   uint64_t bytes = 0;
   double tangential_factor = 4.0;
   int base_bits = 10;
+  int raw_planes = EncodeOptions{}.raw_planes;
   size_t samples = 200000;
   bool json = false, quiet = false;
 };
@@ -44,6 +45,7 @@ Status run_encode(const EncodeCliOptions& o) {
   EncodeOptions encode_options;
   encode_options.tangential_factor = o.tangential_factor;
   encode_options.base_bits = o.base_bits;
+  encode_options.raw_planes = o.raw_planes;
   const auto coding_start = std::chrono::steady_clock::now();
   SRCODEC_ASSIGN_OR_RETURN(EncodedSrm encoded, encode_srm(srm, input, encode_options));
   const double coding_seconds =
@@ -143,6 +145,11 @@ Command add_encode_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--base-bits", o->base_bits, "Bits per coordinate of the base mesh grid")
       ->check(CLI::Range(4, 24))
+      ->capture_default_str();
+  cmd->add_option("--raw-planes", o->raw_planes,
+                  "The symbols of this many lowest bit planes are stored as raw bits (faster decoding, "
+                  "slightly larger); 0 writes .srm version 1")
+      ->check(CLI::Range(0, kSrmMaxPlane + 1))
       ->capture_default_str();
   cmd->add_option("--samples", o->samples, "Samples per surface for the PSNR figures")
       ->check(CLI::Range(size_t{1000}, size_t{100000000}))

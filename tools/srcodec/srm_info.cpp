@@ -44,7 +44,8 @@ Status print_srm_info(const std::string& path, bool json) {
     JsonWriter j;
     j.field("file", path)
         .field("format", "srm")
-        .field("version", static_cast<int>(kSrmVersion))
+        .field("version", h.version())
+        .field("raw_planes", h.raw_planes)
         .field("file_bytes", static_cast<size_t>(f.file_size))
         .field("declared_bytes", static_cast<size_t>(f.declared_size))
         .field("header_bytes", static_cast<size_t>(f.header_size))
@@ -62,7 +63,7 @@ Status print_srm_info(const std::string& path, bool json) {
     std::cout << j.str() << "\n";
     return ok_status();
   }
-  std::printf("%s: .srm version %d, %llu bytes", path.c_str(), kSrmVersion, static_cast<unsigned long long>(f.file_size));
+  std::printf("%s: .srm version %d, %llu bytes", path.c_str(), h.version(), static_cast<unsigned long long>(f.file_size));
   if (f.file_size < f.declared_size)
     std::printf(" (a prefix: the whole file would be %llu)", static_cast<unsigned long long>(f.declared_size));
   std::printf("\n  input: %llu vertices, %llu triangles, bounding box (%g %g %g)..(%g %g %g); %.3f bpv\n",
@@ -78,7 +79,10 @@ Status print_srm_info(const std::string& path, bool json) {
     std::printf("  %5d %10llu %11llu %18llu\n", l, static_cast<unsigned long long>(vertices[l]),
                 static_cast<unsigned long long>(l ? h.flags[l - 1].length : 0),
                 static_cast<unsigned long long>(level_bytes[l]));
-  std::printf("  quantizer step %g; bit planes %d..0, bytes per plane:", h.quant_step, h.top_plane);
+  std::printf("  quantizer step %g; bit planes %d..0", h.quant_step, h.top_plane);
+  if (h.raw_planes > 0)
+    std::printf(" (raw bits below plane %d)", h.raw_planes);
+  std::printf(", bytes per plane:");
   for (int p = h.top_plane; p >= 0; --p) std::printf(" %llu", static_cast<unsigned long long>(plane_bytes[p]));
   std::printf("\n");
   return ok_status();
