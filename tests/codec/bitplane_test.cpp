@@ -530,51 +530,54 @@ TEST(Bitplane, PipelinedDecodeEqualsSequential) {
   std::mt19937 rng(5);
   // Without and with raw planes (the finest level's thread counts
   // its own significant nodes to find where a segment's coded part starts).
-  for (int raw : {0, 2})
-  for (uint32_t seed = 1; seed <= 3; ++seed) {
-    const Synthetic s = make_synthetic(12 + 5 * seed, 4 + seed % 2, 300.0, 40 + seed, seed == 2 ? 0.05 : 0.0);
-    const BitplaneStream stream = encode_bitplanes(s.forest, s.q, raw);
-    const int levels = s.forest.level.back();
-    const std::vector<BitplaneSegmentView> all = views_of(stream);
-    for (int max_level : {1, 2, levels - 1, levels, 255})
-      expect_same_decode(s.forest, stream.top_plane, all, max_level, "whole, max level " + std::to_string(max_level), raw);
-    // Cuts: at, before and after each segment's end, and in its middle.
-    size_t offset = 0;
-    std::vector<size_t> cuts;
-    for (const auto& seg : stream.segments) {
-      for (size_t c : {offset + seg.bytes.size() / 2, offset + seg.bytes.size() - std::min<size_t>(seg.bytes.size(), 1),
-                       offset + seg.bytes.size(), offset + seg.bytes.size() + 1})
-        cuts.push_back(c);
-      offset += seg.bytes.size();
-    }
-    for (size_t cut : cuts)
-      expect_same_decode(s.forest, stream.top_plane, cut_views(stream, cut), 255, "cut " + std::to_string(cut), raw);
-    // One segment missing or cut short (to half, or empty) with all the later
-    // ones present: every segment in turn.
-    for (size_t k = 0; k < all.size(); ++k) {
-      for (int how = 0; how < 3; ++how) {
-        std::vector<BitplaneSegmentView> views = all;
-        if (how == 0) {
-          views.erase(views.begin() + static_cast<long>(k));
-        } else {
-          views[k].size = how == 1 ? views[k].size / 2 : 0;
+  for (int raw : {0, 2}) {
+    for (uint32_t seed = 1; seed <= 3; ++seed) {
+      const Synthetic s = make_synthetic(12 + 5 * seed, 4 + seed % 2, 300.0, 40 + seed, seed == 2 ? 0.05 : 0.0);
+      const BitplaneStream stream = encode_bitplanes(s.forest, s.q, raw);
+      const int levels = s.forest.level.back();
+      const std::vector<BitplaneSegmentView> all = views_of(stream);
+      for (int max_level : {1, 2, levels - 1, levels, 255})
+        expect_same_decode(s.forest, stream.top_plane, all, max_level,
+                           "whole, max level " + std::to_string(max_level), raw);
+      // Cuts: at, before and after each segment's end, and in its middle.
+      size_t offset = 0;
+      std::vector<size_t> cuts;
+      for (const auto& seg : stream.segments) {
+        for (size_t c : {offset + seg.bytes.size() / 2,
+                         offset + seg.bytes.size() - std::min<size_t>(seg.bytes.size(), 1), offset + seg.bytes.size(),
+                         offset + seg.bytes.size() + 1})
+          cuts.push_back(c);
+        offset += seg.bytes.size();
+      }
+      for (size_t cut : cuts)
+        expect_same_decode(s.forest, stream.top_plane, cut_views(stream, cut), 255, "cut " + std::to_string(cut), raw);
+      // One segment missing or cut short (to half, or empty) with all the later
+      // ones present: every segment in turn.
+      for (size_t k = 0; k < all.size(); ++k) {
+        for (int how = 0; how < 3; ++how) {
+          std::vector<BitplaneSegmentView> views = all;
+          if (how == 0) {
+            views.erase(views.begin() + static_cast<long>(k));
+          } else {
+            views[k].size = how == 1 ? views[k].size / 2 : 0;
+          }
+          expect_same_decode(s.forest, stream.top_plane, views, 255,
+                             "segment " + std::to_string(k) + " altered " + std::to_string(how), raw);
         }
-        expect_same_decode(s.forest, stream.top_plane, views, 255,
-                           "segment " + std::to_string(k) + " altered " + std::to_string(how), raw);
       }
-    }
-    // Flipped bytes.
-    for (int t = 0; t < 60; ++t) {
-      std::vector<std::vector<uint8_t>> bytes;
-      for (const auto& seg : stream.segments) bytes.push_back(seg.bytes);
-      for (int k = 0; k < 1 + t % 4; ++k) {
-        auto& seg = bytes[rng() % bytes.size()];
-        if (!seg.empty()) seg[rng() % seg.size()] ^= static_cast<uint8_t>(1 + rng() % 255);
+      // Flipped bytes.
+      for (int t = 0; t < 60; ++t) {
+        std::vector<std::vector<uint8_t>> bytes;
+        for (const auto& seg : stream.segments) bytes.push_back(seg.bytes);
+        for (int k = 0; k < 1 + t % 4; ++k) {
+          auto& seg = bytes[rng() % bytes.size()];
+          if (!seg.empty()) seg[rng() % seg.size()] ^= static_cast<uint8_t>(1 + rng() % 255);
+        }
+        std::vector<BitplaneSegmentView> views;
+        for (size_t k = 0; k < bytes.size(); ++k)
+          views.push_back({stream.segments[k].plane, stream.segments[k].level, bytes[k].data(), bytes[k].size()});
+        expect_same_decode(s.forest, stream.top_plane, views, 255, "flipped bytes, try " + std::to_string(t), raw);
       }
-      std::vector<BitplaneSegmentView> views;
-      for (size_t k = 0; k < bytes.size(); ++k)
-        views.push_back({stream.segments[k].plane, stream.segments[k].level, bytes[k].data(), bytes[k].size()});
-      expect_same_decode(s.forest, stream.top_plane, views, 255, "flipped bytes, try " + std::to_string(t), raw);
     }
   }
   // Garbage under a made-up top plane.
