@@ -91,7 +91,7 @@ void write_bytes(const std::string& path, const std::vector<uint8_t>& bytes) {
 StatusOr<std::vector<uint8_t>> cut_for_psnr(const TriangleMesh& input, const std::vector<uint8_t>& stream,
                                             double target, double* best) {
   const StreamCutter cutter(input, stream);
-  SRCODEC_ASSIGN_OR_RETURN(*best, cutter.psnr(cutter.segment_bytes(), 60000));
+  SRCODEC_ASSIGN_OR_RETURN(*best, whole_stream_psnr(cutter));
   if (*best < target) return std::vector<uint8_t>{};
   SRCODEC_ASSIGN_OR_RETURN(uint64_t segment_bytes, segment_bytes_for_psnr(cutter, target));
   return cutter.cut(segment_bytes);
@@ -145,8 +145,9 @@ int run(const std::string& path, int levels, int runs, const std::string& cache_
   std::vector<uint8_t> default_file = default_cached.empty() ? std::vector<uint8_t>{} : read_bytes(default_cached);
   if (default_file.empty()) {
     const StreamCutter cutter(input.value(), encoded.bytes);
-    StatusOr<double> best = cutter.psnr(cutter.segment_bytes(), 60000);
-    StatusOr<uint64_t> kept = best.ok() ? segment_bytes_for_psnr(cutter, best.value() - 1.0) : best.status();
+    StatusOr<double> best = whole_stream_psnr(cutter);
+    StatusOr<uint64_t> kept =
+        best.ok() ? segment_bytes_for_psnr(cutter, best.value() - kDefaultDbBelowWholeStream) : best.status();
     StatusOr<std::vector<uint8_t>> cut = kept.ok() ? cutter.cut(kept.value()) : kept.status();
     if (!cut.ok()) {
       std::fprintf(stderr, "%s\n", cut.status().message().c_str());

@@ -42,14 +42,17 @@ StatusOr<uint64_t> StreamCutter::segment_bytes_within(uint64_t bytes) const {
   return lo;
 }
 
+StatusOr<double> whole_stream_psnr(const StreamCutter& cutter) {
+  return cutter.psnr(cutter.segment_bytes(), kRateControlSamples);
+}
+
 StatusOr<uint64_t> segment_bytes_for_psnr(const StreamCutter& cutter, double target) {
-  constexpr size_t kSearchSamples = 60000;
   uint64_t lo = 0, hi = cutter.segment_bytes();
-  SRCODEC_ASSIGN_OR_RETURN(double at_lo, cutter.psnr(lo, kSearchSamples));
+  SRCODEC_ASSIGN_OR_RETURN(double at_lo, cutter.psnr(lo, kRateControlSamples));
   if (at_lo >= target) return lo;
   while (hi - lo > std::max<uint64_t>(8, hi / 2000)) {
     const uint64_t mid = lo + (hi - lo) / 2;
-    SRCODEC_ASSIGN_OR_RETURN(double p, cutter.psnr(mid, kSearchSamples));
+    SRCODEC_ASSIGN_OR_RETURN(double p, cutter.psnr(mid, kRateControlSamples));
     (p >= target ? hi : lo) = mid;
   }
   return hi;

@@ -4,6 +4,7 @@
 // the speed benchmark.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -31,9 +32,20 @@ class StreamCutter {
   uint64_t segment_bytes_ = 0;
 };
 
+// Samples per surface of the PSNR figures rate control decides on: fewer
+// than a final figure's.
+inline constexpr size_t kRateControlSamples = 60000;
+
+// With no rate option, `srcodec encode` aims this many dB below the PSNR of
+// the whole stream (whole_stream_psnr).
+inline constexpr double kDefaultDbBelowWholeStream = 1.0;
+
+// The PSNR of the whole stream, with kRateControlSamples.
+StatusOr<double> whole_stream_psnr(const StreamCutter& cutter);
+
 // The fewest segment bytes whose PSNR reaches `target` (bisection: the
 // embedded stream's distortion does not grow with its length), measured with
-// fewer samples than a final figure.
+// kRateControlSamples.
 StatusOr<uint64_t> segment_bytes_for_psnr(const StreamCutter& cutter, double target);
 
 }  // namespace srcodec

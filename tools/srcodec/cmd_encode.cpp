@@ -69,7 +69,7 @@ Status run_encode(const EncodeCliOptions& o) {
                               "(try fewer --base-vertices or --levels)");
     SRCODEC_ASSIGN_OR_RETURN(segment_bytes, cutter.segment_bytes_within(budget));
   } else {
-    SRCODEC_ASSIGN_OR_RETURN(double best, cutter.psnr(segment_bytes, 60000));
+    SRCODEC_ASSIGN_OR_RETURN(double best, whole_stream_psnr(cutter));
     target = o.psnr;
     if (target < 0 && !std::isfinite(best)) {
       // No error at all (a tiny mesh that is its own base mesh): nothing to trade.
@@ -77,9 +77,11 @@ Status run_encode(const EncodeCliOptions& o) {
       rate = "the whole stream";
     } else {
       if (target < 0) {
-        target = best - 1.0;
-        say("no rate option given: aiming at " + std::to_string(target) +
-            " dB, 1 dB below the whole stream (use --bpv, --bytes or --psnr to choose)");
+        target = best - kDefaultDbBelowWholeStream;
+        char below[32];
+        std::snprintf(below, sizeof below, "%g", kDefaultDbBelowWholeStream);
+        say("no rate option given: aiming at " + std::to_string(target) + " dB, " + below +
+            " dB below the whole stream (use --bpv, --bytes or --psnr to choose)");
       }
       rate = "--psnr " + std::to_string(target);
       if (best < target)
