@@ -308,7 +308,7 @@ StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const DecodeOptions& option
   if (!triangles_claimed.exchange(true)) triangles = hier.level_triangles(level);
   StatusOr<LiftingPlan> plan = plan_job.get();
   if (!plan.ok()) return plan.status().with_context("wavelet plan");
-  std::vector<Eigen::Vector3d> positions = inverse_lifting(plan.value(), base_positions, detail, level);
+  std::vector<Eigen::Vector3d> positions = inverse_lifting(plan.value(), base_positions, std::move(detail), level);
   // Every vertex of the replayed hierarchy (levels <= `level`, ids 0 ..
   // vertex_count - 1) is a corner of some triangle of the level mesh: the
   // mesh is already compact (compact_mesh would copy it unchanged).

@@ -138,6 +138,7 @@ StatusOr<TriangleHierarchy> TriangleHierarchy::create(int32_t base_vertex_count,
     h.vertex_origin_[v] = 3 * first_face[v] + static_cast<int32_t>(std::find(t.begin(), t.end(), v) - t.begin());
   }
   h.vertices_at_level_ = {static_cast<size_t>(base_vertex_count)};
+  h.base_face_count_ = static_cast<size_t>(face_count);
   return h;
 }
 
@@ -312,11 +313,32 @@ void TriangleHierarchy::split_balanced(int32_t node, std::vector<int32_t>* new_v
   }
   nodes_[node].first_child = first;
   max_level_ = std::max(max_level_, level);
+  if (static_cast<int32_t>(splits_at_level_.size()) < level) splits_at_level_.resize(level, 0);
+  ++splits_at_level_[level - 1];
+}
+
+size_t TriangleHierarchy::level_triangle_bound(int32_t level) const {
+  // Nodes of level l: the base triangles at 0, else 4 per split of level l - 1.
+  const auto nodes_at = [this](int32_t l) -> size_t {
+    if (l == 0) return base_face_count_;
+    return l - 1 < static_cast<int32_t>(splits_at_level_.size()) ? 4 * splits_at_level_[l - 1] : 0;
+  };
+  const auto splits_at = [this](int32_t l) -> size_t {
+    return l < static_cast<int32_t>(splits_at_level_.size()) ? splits_at_level_[l] : 0;
+  };
+  // Every node of level `level` is one triangle; a leaf of a coarser level is
+  // one, or two when green-bisected.
+  size_t bound = nodes_at(level);
+  for (int32_t l = 0; l < level; ++l) bound += 2 * (nodes_at(l) - splits_at(l));
+  return bound;
 }
 
 std::vector<std::array<int32_t, 3>> TriangleHierarchy::level_triangles(int32_t level) const {
-  level = std::max(level, 0);
+  level = std::clamp(level, 0, max_level_);
   std::vector<std::array<int32_t, 3>> out;
+  // Reserved once: grown by doubling, the finest mesh was copied several
+  // times over and left pages touched for nothing (the decoder's output).
+  out.reserve(level_triangle_bound(level));
   std::vector<int32_t> stack;
   // Depth first from each base triangle (nodes 0 .. F - 1), children in
   // order, so the triangles of one base face and of one subtree come together.

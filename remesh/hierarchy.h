@@ -106,6 +106,8 @@ class TriangleHierarchy {
   std::vector<int32_t> vertex_origin_;
   std::vector<int32_t> pending_;  // split()'s work stack, kept to reuse its memory
   std::vector<size_t> vertices_at_level_;  // how many vertices each level created
+  std::vector<size_t> splits_at_level_;    // how many nodes of each level are split
+  size_t base_face_count_ = 0;
   int32_t base_vertex_count_ = 0;
   int32_t max_level_ = 0;
 
@@ -113,6 +115,8 @@ class TriangleHierarchy {
   int32_t split_neighbour_count(int32_t node) const;
   int32_t edge_index(int32_t node, int32_t a, int32_t b) const;
   void split_balanced(int32_t node, std::vector<int32_t>* new_vertices);
+  // At least the number of triangles level_triangles(level) lists (0 <= level <= max_level).
+  size_t level_triangle_bound(int32_t level) const;
 };
 
 }  // namespace srcodec

@@ -180,13 +180,20 @@ void extraordinary(const LevelMesh& mesh, int32_t e, int32_t o, double scale, st
   add(out, e, (1.0 - sum) * scale);  // 3/4, as OpenMesh computes it
 }
 
-void interior_taps(const LevelMesh& mesh, int32_t a, int32_t b, int32_t x, int32_t y, std::vector<Tap>* out) {
+// Whether the interior edge (a, b) takes the 8-point rule.
+bool eight_point_rule(const LevelMesh& mesh, int32_t a, int32_t b) {
   const int32_t va = mesh.valence(a), vb = mesh.valence(b);
   const bool ba = mesh.on_boundary(a), bb = mesh.on_boundary(b);
-  if ((va == 6 && vb == 6) || (ba && vb == 6) || (bb && va == 6) || (ba && bb)) {
+  return (va == 6 && vb == 6) || (ba && vb == 6) || (bb && va == 6) || (ba && bb);
+}
+
+void interior_taps(const LevelMesh& mesh, int32_t a, int32_t b, int32_t x, int32_t y, std::vector<Tap>* out) {
+  if (eight_point_rule(mesh, a, b)) {
     eight_point(mesh, a, b, x, y, out);
     return;
   }
+  const int32_t va = mesh.valence(a), vb = mesh.valence(b);
+  const bool ba = mesh.on_boundary(a), bb = mesh.on_boundary(b);
   const bool irregular_a = va != 6 && !ba, irregular_b = vb != 6 && !bb;
   const double scale = (irregular_a && irregular_b) ? 0.5 : 1.0;
   if (irregular_a) extraordinary(mesh, a, b, scale, out);
@@ -264,6 +271,18 @@ StatusOr<LevelMesh> LevelMesh::build(const std::vector<std::array<int32_t, 3>>& 
     }
   }
   return m;
+}
+
+std::array<int32_t, 4> regular_wings(const LevelMesh& mesh, int32_t a, int32_t b, int32_t left, int32_t right) {
+  const std::array<int32_t, 4> none{-1, -1, -1, -1};
+  if (left < 0 || right < 0 || !eight_point_rule(mesh, a, b)) return none;
+  // The corners across the edges of (a, b, left) and (b, a, right) other
+  // than (a, b), as eight_point's wings.
+  const std::array<int32_t, 4> w{mesh.third(left, b), mesh.third(a, left), mesh.third(right, a),
+                                 mesh.third(b, right)};
+  for (int32_t v : w)
+    if (v < 0) return none;
+  return w;
 }
 
 void butterfly_taps(const LevelMesh& mesh, int32_t a, int32_t b, int32_t left, int32_t right,

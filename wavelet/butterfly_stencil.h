@@ -48,6 +48,12 @@ class LevelMesh {
 // distinct vertex, sorted by vertex id, no zero weights. `left` and `right`
 // are mesh.third(a, b) and mesh.third(b, a), which the caller has already
 // looked up (the plan keeps them for the frames).
+// The four wings of the plain 8-point stencil of edge (a, b), in the order
+// LiftingPlan::Odd::wing lists them, when butterfly_taps would give that
+// stencil: the 8-point rule applies and every wing is a vertex (no
+// reflection across a boundary edge). {-1, -1, -1, -1} otherwise.
+std::array<int32_t, 4> regular_wings(const LevelMesh& mesh, int32_t a, int32_t b, int32_t left, int32_t right);
+
 void butterfly_taps(const LevelMesh& mesh, int32_t a, int32_t b, int32_t left, int32_t right,
                     std::vector<LiftingPlan::Tap>* taps);
 

@@ -82,6 +82,9 @@ Frame odd_frame(const LiftingPlan::Odd& o, const std::vector<Vector3d>& x) {
 }
 
 Vector3d predict(const LiftingPlan::Odd& o, const LiftingPlan::Tap* taps, const std::vector<Vector3d>& x) {
+  if (o.regular())
+    return 0.5 * (x[o.a] + x[o.b]) + 0.125 * (x[o.left] + x[o.right]) -
+           0.0625 * ((x[o.wing[0]] + x[o.wing[1]]) + (x[o.wing[2]] + x[o.wing[3]]));
   Vector3d p = Vector3d::Zero();
   for (uint32_t i = o.taps_begin; i < o.taps_end; ++i) p += taps[i].weight * x[taps[i].vertex];
   return p;
@@ -128,12 +131,16 @@ StatusOr<LiftingPlan> LiftingPlan::build(const TriangleHierarchy& hierarchy, int
   plan.vertex_count_ = hierarchy.vertex_count();
   const std::vector<int32_t> odd = odd_vertices_by_level(hierarchy, plan.built_levels_, &plan.level_begin_);
   plan.odds_.reserve(odd.size());
-  plan.taps_.reserve(8 * odd.size());
   for (int32_t j = 1; j <= plan.built_levels_; ++j) {
     const uint32_t first = plan.level_begin_[j - 1], last = plan.level_begin_[j];
     if (first == last) continue;
-    SRCODEC_ASSIGN_OR_RETURN(const LevelMesh mesh,
-                             LevelMesh::build(hierarchy.level_triangles(j - 1), plan.vertex_count_));
+    // The level mesh spans the ids up to its largest corner, not every vertex
+    // of the hierarchy: level by level (the decoder's replay) the coarse
+    // levels' ids come first, and their meshes stay small.
+    const std::vector<std::array<int32_t, 3>> triangles = hierarchy.level_triangles(j - 1);
+    int32_t mesh_vertices = 0;
+    for (const auto& t : triangles) mesh_vertices = std::max({mesh_vertices, t[0] + 1, t[1] + 1, t[2] + 1});
+    SRCODEC_ASSIGN_OR_RETURN(const LevelMesh mesh, LevelMesh::build(triangles, mesh_vertices));
     for (uint32_t k = first; k < last; ++k) {
       // Filled in place (the reserved array does not move): an Odd built on
       // the stack field by field and then copied is read back with wide loads
@@ -143,7 +150,7 @@ StatusOr<LiftingPlan> LiftingPlan::build(const TriangleHierarchy& hierarchy, int
       const auto edge = hierarchy.parent_edge(o.v);
       o.a = edge[0];
       o.b = edge[1];
-      if (o.a >= 0 && o.b >= 0) {
+      if (o.a >= 0 && o.b >= 0 && o.a < mesh_vertices && o.b < mesh_vertices) {
         o.left = mesh.third(o.a, o.b);
         o.right = mesh.third(o.b, o.a);
       }
@@ -154,11 +161,18 @@ StatusOr<LiftingPlan> LiftingPlan::build(const TriangleHierarchy& hierarchy, int
       o.update_a = kUpdateWeight / mesh.valence(o.a);
       o.update_b = kUpdateWeight / mesh.valence(o.b);
       o.taps_begin = static_cast<uint32_t>(plan.taps_.size());
-      butterfly_taps(mesh, o.a, o.b, o.left, o.right, &plan.taps_);
+      o.wing = regular_wings(mesh, o.a, o.b, o.left, o.right);
+      if (!o.regular()) butterfly_taps(mesh, o.a, o.b, o.left, o.right, &plan.taps_);
       o.taps_end = static_cast<uint32_t>(plan.taps_.size());
     }
   }
   return plan;
+}
+
+std::vector<LiftingPlan::Tap> LiftingPlan::stencil(const Odd& o) const {
+  if (!o.regular()) return {taps_.begin() + o.taps_begin, taps_.begin() + o.taps_end};
+  return {{o.a, 0.5},          {o.b, 0.5},          {o.left, 0.125},     {o.right, 0.125},
+          {o.wing[0], -0.0625}, {o.wing[1], -0.0625}, {o.wing[2], -0.0625}, {o.wing[3], -0.0625}};
 }
 
 WaveletCoefficients forward_lifting(const LiftingPlan& plan, const std::vector<Vector3d>& positions) {
@@ -188,26 +202,41 @@ WaveletCoefficients forward_lifting(const LiftingPlan& plan, const std::vector<V
 }
 
 std::vector<Vector3d> inverse_lifting(const LiftingPlan& plan, const std::vector<Vector3d>& base,
-                                      const std::vector<Vector3d>& detail, int32_t level) {
+                                      std::vector<Vector3d> detail, int32_t level) {
   const size_t nv = static_cast<size_t>(plan.vertex_count());
-  std::vector<Vector3d> x(nv, Vector3d::Zero());
-  std::copy_n(base.begin(), std::min({nv, base.size(), static_cast<size_t>(plan.base_vertex_count())}), x.begin());
   level = std::clamp(level, 0, plan.levels());
+  // The positions are worked out in place of the details when every vertex
+  // is a base vertex or an odd one of levels 1 .. level (each odd slot is
+  // read, as its detail, before anything else writes it): one array of the
+  // finest mesh's size less to allocate. Otherwise in a zeroed copy.
+  size_t reconstructed = static_cast<size_t>(plan.base_vertex_count());
+  for (int32_t j = 1; j <= level; ++j) reconstructed += static_cast<size_t>(plan.odd_end(j) - plan.odd_begin(j));
+  const bool in_place = detail.size() == nv && reconstructed == nv;
+  std::vector<Vector3d> x;
+  if (in_place) {
+    x = std::move(detail);
+    detail.clear();
+    std::fill_n(x.begin(), plan.base_vertex_count(), Vector3d::Zero());
+  } else {
+    x.assign(nv, Vector3d::Zero());
+  }
+  std::copy_n(base.begin(), std::min({nv, base.size(), static_cast<size_t>(plan.base_vertex_count())}), x.begin());
+  const std::vector<Vector3d>& details = in_place ? x : detail;
   const LiftingPlan::Tap* taps = plan.taps().data();
-  const size_t details = detail.size();
   for (int32_t j = 1; j <= level; ++j) {
     const LiftingPlan::Odd* begin = plan.odd_begin(j);
     const LiftingPlan::Odd* end = plan.odd_end(j);
     // The world-space detail waits in the odd vertex's own slot (still zero,
-    // and read by no stencil or frame of this level) until the predict step.
-    // A zero detail needs no frame and moves nothing.
+    // or its detail when in place, and read by no stencil or frame of this
+    // level) until the predict step. A zero detail needs no frame and moves
+    // nothing.
     // The frame and predict steps touch each odd vertex's own slot only (and
     // read even ones): on a big level, half of each runs on a second thread.
     // The update step scatters to shared even vertices and stays serial.
     const auto to_world = [&](const LiftingPlan::Odd* from, const LiftingPlan::Odd* to) {
       for (const auto* o = from; o != to; ++o) {
-        if (static_cast<size_t>(o->v) >= details) continue;
-        const Vector3d& d = detail[o->v];
+        if (static_cast<size_t>(o->v) >= details.size()) continue;
+        const Vector3d d = details[o->v];  // a copy: in place, x[o->v] is written below
         if (d.x() == 0.0 && d.y() == 0.0 && d.z() == 0.0) continue;
         const Frame f = odd_frame(*o, x);
         x[o->v] = d.x() * f.n + d.y() * f.t + d.z() * f.s;

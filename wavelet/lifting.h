@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -47,13 +48,22 @@ class LiftingPlan {
     int32_t v = -1;
     int32_t a = -1, b = -1;          // parent edge, as hierarchy.parent_edge(v)
     int32_t left = -1, right = -1;   // third corner of the level-(j-1) triangle on (a, b) / on (b, a); -1 if none
+    // The regular case, most odd vertices: the 8-point stencil with its four
+    // wings present, 1/2 on a and b, 1/8 on left and right, -1/16 on the
+    // wings (the corners across the edges (left, b), (a, left), (right, a),
+    // (b, right)). Such an odd has no taps. -1 otherwise.
+    std::array<int32_t, 4> wing{-1, -1, -1, -1};
     double update_a = 0, update_b = 0;
-    uint32_t taps_begin = 0, taps_end = 0;  // into taps()
+    uint32_t taps_begin = 0, taps_end = 0;  // into taps(): the stencil when not regular
+    bool regular() const { return wing[0] >= 0; }
   };
   // The odd vertices of level j (1 <= j <= levels(); empty beyond max_level).
   const Odd* odd_begin(int32_t level) const;
   const Odd* odd_end(int32_t level) const;
   const std::vector<Tap>& taps() const { return taps_; }
+  // The prediction stencil of `o` as taps (a regular one spelled out, with
+  // its eight terms in stencil order).
+  std::vector<Tap> stencil(const Odd& o) const;
 
  private:
   int32_t levels_ = 0;
@@ -82,8 +92,9 @@ WaveletCoefficients forward_lifting(const LiftingPlan& plan, const std::vector<E
 // Reconstructs the positions of every vertex of level <= `level`
 // (0 .. plan.levels(), clamped); entries of finer vertices are zero. `base`
 // has base_vertex_count entries, `detail` vertex_count entries (missing
-// entries count as 0; details of levels > level are ignored).
+// entries count as 0; details of levels > level are ignored). Pass `detail`
+// as an rvalue when it is not needed after: its array then holds the result.
 std::vector<Eigen::Vector3d> inverse_lifting(const LiftingPlan& plan, const std::vector<Eigen::Vector3d>& base,
-                                             const std::vector<Eigen::Vector3d>& detail, int32_t level);
+                                             std::vector<Eigen::Vector3d> detail, int32_t level);
 
 }  // namespace srcodec

@@ -13,6 +13,7 @@
 
 #include "format/mesh.h"
 #include "tests/test_util.h"
+#include "wavelet/butterfly_stencil.h"
 
 namespace srcodec {
 namespace {
@@ -366,7 +367,7 @@ TEST(LiftingFrames, SphereDetailsAreMostlyNormal) {
   for (int32_t j = 1; j <= plan.levels(); ++j)
     for (const auto* o = plan.odd_begin(j); o != plan.odd_end(j); ++o) {
       Vector3d p = Vector3d::Zero();
-      for (uint32_t i = o->taps_begin; i < o->taps_end; ++i) p += plan.taps()[i].weight * x[plan.taps()[i].vertex];
+      for (const LiftingPlan::Tap& t : plan.stencil(*o)) p += t.weight * x[t.vertex];
       x[o->v] = p.normalized();
     }
   const WaveletCoefficients c = forward_lifting(plan, x);
@@ -457,6 +458,49 @@ TEST(LiftingRobustness, DeterministicAcrossRebuilds) {
   EXPECT_EQ(inverse_lifting(pa, ca.base, ca.detail, 4), inverse_lifting(pb, cb.base, cb.detail, 4));
 }
 
+// The plan keeps no taps for a regular odd vertex, only its four wings: its
+// stencil must be the one butterfly_taps computes there, term for term once
+// repeated vertices are summed; every other odd keeps butterfly_taps' taps.
+void expect_plan_stencils_are_butterfly_taps(const TriangleHierarchy& h, double min_regular_share) {
+  const LiftingPlan plan = make_plan(h);
+  size_t odds = 0, regular = 0;
+  for (int32_t j = 1; j <= plan.levels(); ++j) {
+    auto mesh = LevelMesh::build(h.level_triangles(j - 1), h.vertex_count());
+    ASSERT_TRUE(mesh.ok()) << mesh.status().message();
+    for (const auto* o = plan.odd_begin(j); o != plan.odd_end(j); ++o) {
+      std::vector<LiftingPlan::Tap> expected;
+      butterfly_taps(mesh.value(), o->a, o->b, o->left, o->right, &expected);
+      std::map<int32_t, double> got;
+      for (const LiftingPlan::Tap& t : plan.stencil(*o)) got[t.vertex] += t.weight;
+      ASSERT_EQ(got.size(), expected.size()) << "vertex " << o->v;
+      for (const LiftingPlan::Tap& t : expected) EXPECT_NEAR(got[t.vertex], t.weight, 1e-15) << "vertex " << o->v;
+      ++odds;
+      regular += o->regular();
+    }
+  }
+  EXPECT_GE(static_cast<double>(regular), min_regular_share * static_cast<double>(odds))
+      << regular << " regular of " << odds;
+  EXPECT_LT(regular, odds);  // both kinds were checked
+}
+
+TEST(LiftingPlan, RegularOddsHaveTheButterflyStencil) {
+  std::mt19937 rng(14);
+  const TriangleMesh ico = test::icosphere(0, 1.0);
+  TriangleHierarchy uniform = make_hierarchy(ico);
+  refine_uniform(uniform, 4);
+  expect_plan_stencils_are_butterfly_taps(uniform, 0.75);
+  TriangleHierarchy adaptive = make_hierarchy(ico);
+  refine_random(adaptive, 5, 80, rng);
+  expect_plan_stencils_are_butterfly_taps(adaptive, 0.1);
+  // Boundary edges: the 8-point rule with a reflected wing is not regular.
+  TriangleHierarchy open = make_hierarchy(test::flat_square(4));
+  refine_uniform(open, 3);
+  expect_plan_stencils_are_butterfly_taps(open, 0.5);
+  TriangleHierarchy zoo = make_hierarchy(valence_zoo());
+  refine_uniform(zoo, 3);
+  expect_plan_stencils_are_butterfly_taps(zoo, 0.3);
+}
+
 TEST(LiftingPlan, RejectsNegativeLevelsAndAcceptsExtraLevels) {
   const TriangleMesh ico = test::icosphere(0, 1.0);
   TriangleHierarchy h = make_hierarchy(ico);
@@ -473,7 +517,7 @@ TEST(LiftingPlan, RejectsNegativeLevelsAndAcceptsExtraLevels) {
   for (int32_t j = 1; j <= 2; ++j)
     for (const auto* o = deep->odd_begin(j); o != deep->odd_end(j); ++o) {
       double sum = 0.0;
-      for (uint32_t i = o->taps_begin; i < o->taps_end; ++i) sum += deep->taps()[i].weight;
+      for (const LiftingPlan::Tap& t : deep->stencil(*o)) sum += t.weight;
       EXPECT_NEAR(sum, 1.0, 1e-12);
     }
 }
