@@ -22,6 +22,7 @@
 //    leaf of every level mesh has at most one hanging vertex, of the next level.
 #include "remesh/hierarchy.h"
 
+
 #include <algorithm>
 #include <cassert>
 #include <limits>
@@ -163,6 +164,11 @@ void TriangleHierarchy::reserve(size_t nodes, size_t vertices) {
   vertex_level_.reserve(vertices);
   parent_edge_.reserve(vertices);
   vertex_origin_.reserve(vertices);
+}
+
+std::vector<MemoryRange> TriangleHierarchy::reserved_memory() const {
+  return {capacity_of(nodes_), capacity_of(adjacent_), capacity_of(vertex_level_), capacity_of(parent_edge_),
+          capacity_of(vertex_origin_)};
 }
 
 size_t TriangleHierarchy::level_vertex_count(int32_t level) const {

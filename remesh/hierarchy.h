@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "format/prefault.h"
 #include "format/status.h"
 #include "remesh/param.h"
 
@@ -61,6 +62,9 @@ class TriangleHierarchy {
   // Capacity for this many nodes and vertices in all, so that a replay of
   // known size (the decoder knows its vertex counts) does not reallocate.
   void reserve(size_t nodes, size_t vertices);
+  // The arrays' memory up to their capacity, to prefault (format/prefault.h)
+  // before a replay writes it.
+  std::vector<MemoryRange> reserved_memory() const;
 
   // Splits leaf `node` 1-to-4 (red). First splits, recursively, every coarser
   // leaf across its edges so the hierarchy stays balanced; afterwards splits
