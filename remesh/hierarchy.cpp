@@ -22,7 +22,6 @@
 //    leaf of every level mesh has at most one hanging vertex, of the next level.
 #include "remesh/hierarchy.h"
 
-
 #include <algorithm>
 #include <cassert>
 #include <limits>
