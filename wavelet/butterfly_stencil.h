@@ -2,7 +2,7 @@
 // "Interpolating Subdivision for Meshes with Arbitrary Topology", SIGGRAPH
 // 1996, §4; boundary rule as in OpenMesh's ModifiedButterflyT) on one level
 // mesh of a semi-regular hierarchy. Internal to wavelet/: LiftingPlan::build
-// turns each stencil into flat taps once, the transforms never traverse.
+// turns each stencil into wings or flat taps once, the transforms never traverse.
 #pragma once
 
 #include <array>

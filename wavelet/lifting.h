@@ -25,9 +25,9 @@ inline constexpr double kUpdateWeight = 0.75;
 // Connectivity-only precomputation for one hierarchy, shared by encoder and
 // decoder: it depends only on the TriangleHierarchy, never on positions.
 // Flat arrays: per level, its odd vertices in increasing id order, each with
-// its prediction stencil (vertex ids + weights), its parent edge with the
-// update weights of both ends, and the third corners of the one or two
-// triangles on that edge (for the frame).
+// its prediction stencil (its four wings when regular, else taps: vertex ids
+// and weights), its parent edge with the update weights of both ends, and the
+// third corners of the one or two triangles on that edge (for the frame).
 class LiftingPlan {
  public:
   // `levels` = finest level to transform (>= hierarchy.max_level() is fine;
