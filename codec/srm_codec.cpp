@@ -251,7 +251,10 @@ StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const DecodeOptions& option
   // bunny's 4 levels) for the first time: the other core maps their pages
   // meanwhile, which a page fault per 4 KB did here before. (Joined on
   // return, at the latest; it only maps pages and changes no byte. Small
-  // hierarchies are not worth a thread.)
+  // hierarchies are not worth a thread.) A header that lies about its
+  // vertex counts makes this map memory the replay then does not use, at most
+  // what `max_vertices` allows: as much as a valid file of a few hundred
+  // bytes (all-split flags, no coefficients) may use.
   std::future<void> prefaulting;
   const std::vector<MemoryRange> fresh = hier.reserved_memory();
   size_t fresh_bytes = 0;
