@@ -249,20 +249,14 @@ StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const DecodeOptions& option
   hier.reserve(h.base_triangles + 3 * new_vertices, total);
   // The replay runs on this thread and writes those arrays (~16 MB on the
   // bunny's 4 levels) for the first time: the other core maps their pages
-  // meanwhile, which a page fault per 4 KB did here before. (Joined on
+  // meanwhile, which a page fault per 4 KB did here before. (Stopped on
   // return, at the latest; it only maps pages and changes no byte. Small
   // hierarchies are not worth a thread.) A header that lies about its
-  // vertex counts makes this map memory the replay then does not use, at most
-  // what `max_vertices` allows: as much as a valid file of a few hundred
-  // bytes (all-split flags, no coefficients) may use.
-  std::future<void> prefaulting;
-  const std::vector<MemoryRange> fresh = hier.reserved_memory();
-  size_t fresh_bytes = 0;
-  for (const MemoryRange& range : fresh) fresh_bytes += range.bytes;
-  if (fresh_bytes >= kPrefaultMinBytes)
-    prefaulting = std::async(std::launch::async, [fresh] {
-      for (const MemoryRange& range : fresh) prefault(range);
-    });
+  // vertex counts makes this map memory the replay does not use, until the
+  // replay fails and stops it; at most what `max_vertices` allows, as much as
+  // a valid file of a few hundred bytes (all-split flags, no coefficients)
+  // may use.
+  const BackgroundPrefault prefaulting(hier.reserved_memory(), kPrefaultMinBytes);
   StatusOr<int> reached = decode_hierarchy(file, level, hier, options.max_vertices);
   if (!reached.ok()) return reached.status();
   level = reached.value();

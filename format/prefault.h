@@ -8,7 +8,9 @@
 // the pages fault in as they are written.
 #pragma once
 
+#include <atomic>
 #include <cstddef>
+#include <thread>
 #include <vector>
 
 namespace srcodec {
@@ -29,5 +31,23 @@ MemoryRange capacity_of(const std::vector<T, A>& v) {
 // Safe while other threads write there, and on memory freed meanwhile: it
 // changes no byte.
 bool prefault(const MemoryRange& range);
+
+// Prefaults ranges on a thread of its own, a few megabytes at a time, while
+// the caller goes on and writes them; when they hold at least `min_bytes`
+// (a thread costs tens of microseconds). Destroying it stops the thread
+// between two steps and joins it.
+class BackgroundPrefault {
+ public:
+  BackgroundPrefault(std::vector<MemoryRange> ranges, size_t min_bytes);
+  ~BackgroundPrefault();
+  BackgroundPrefault(const BackgroundPrefault&) = delete;
+  BackgroundPrefault& operator=(const BackgroundPrefault&) = delete;
+
+  bool running() const { return thread_.joinable(); }
+
+ private:
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
 
 }  // namespace srcodec

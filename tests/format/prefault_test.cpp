@@ -56,5 +56,28 @@ TEST(Prefault, EmptyUnalignedAndFreedRanges) {
   prefault(freed);  // may fail (unmapped) or map memory someone else owns: no crash, no byte changed
 }
 
+TEST(BackgroundPrefault, MapsWhileTheCallerWritesAndStopsWhenDestroyed) {
+  std::vector<uint32_t> v;
+  v.reserve(kWords);
+  {
+    const BackgroundPrefault below({capacity_of(v)}, 2 * kWords * sizeof(uint32_t));
+    EXPECT_FALSE(below.running());  // under its threshold: no thread
+  }
+  {
+    const BackgroundPrefault mapping({capacity_of(v)}, 0);
+    EXPECT_TRUE(mapping.running());
+    for (size_t i = 0; i < kWords; ++i) v.push_back(static_cast<uint32_t>(3 * i));
+  }
+  for (size_t i = 0; i < kWords; ++i) ASSERT_EQ(v[i], static_cast<uint32_t>(3 * i)) << i;
+  // A gigabyte of address space reserved and never used: destroyed at once,
+  // it stops after a step or two instead of mapping all of it.
+  std::vector<char> huge;
+  huge.reserve(size_t{1} << 30);
+  const long before = minor_faults();
+  { const BackgroundPrefault stopped({capacity_of(huge)}, 0); }
+  const long faults = minor_faults() - before;
+  EXPECT_LT(faults, 20000) << faults << " faults";  // all of it would be 262144 pages
+}
+
 }  // namespace
 }  // namespace srcodec
