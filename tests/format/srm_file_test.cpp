@@ -4,6 +4,7 @@
 
 #include <fstream>
 #include <random>
+#include <vector>
 
 #include "format/checksum.h"
 
@@ -212,6 +213,28 @@ TEST(SrmFile, TruncationKeepsWholeSegmentsThenCutsOneAndListsOnlyThose) {
 TEST(Checksum, MatchesTheStandardCheckValue) {
   const uint8_t digits[] = {'1', '2', '3', '4', '5', '6', '7', '8', '9'};
   EXPECT_EQ(crc32(digits, 9), 0xCBF43926u);
+}
+
+// The eight-bytes-at-a-time path against the definition, bit by bit, at every
+// length and alignment around the 8-byte steps, and continued from a prefix.
+TEST(Checksum, EqualsTheBitwiseDefinition) {
+  const auto bitwise = [](const uint8_t* data, size_t size) {
+    uint32_t c = 0xffffffffu;
+    for (size_t i = 0; i < size; ++i) {
+      c ^= data[i];
+      for (int k = 0; k < 8; ++k) c = (c & 1) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+    }
+    return ~c;
+  };
+  std::vector<uint8_t> bytes(100);
+  for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<uint8_t>(i * 37 + (i >> 3) * 11 + 5);
+  for (size_t from = 0; from < 9; ++from)
+    for (size_t size = 0; from + size <= bytes.size(); ++size) {
+      const uint8_t* p = bytes.data() + from;
+      ASSERT_EQ(crc32(p, size), bitwise(p, size)) << from << " " << size;
+      const size_t half = size / 2;
+      ASSERT_EQ(crc32(p + half, size - half, crc32(p, half)), bitwise(p, size)) << from << " " << size;
+    }
 }
 
 }  // namespace
