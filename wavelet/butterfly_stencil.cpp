@@ -75,19 +75,33 @@ void four_point(const LevelMesh& mesh, int32_t p, int32_t q, std::vector<Tap>* o
   add(out, after, -1.0 / 16);
 }
 
-// Wing of the 8-point stencil across edge (u, v) of a triangle (u, v, w)
-// (directed edge (u, v) in it): the corner of the triangle across, or the
+// The edge (u, v) of a triangle (u, v, w) (directed edge (u, v) in it)
+// across which an 8-point stencil has a wing.
+struct WingEdge {
+  int32_t u, v, w;
+};
+
+// The four wing edges of the 8-point stencil on (a, b), triangles (a, b, x)
+// and (b, a, y), in the order of LiftingPlan::Odd::wing.
+std::array<WingEdge, 4> wing_edges(int32_t a, int32_t b, int32_t x, int32_t y) {
+  return {{{b, x, a}, {x, a, b}, {a, y, b}, {y, b, a}}};
+}
+
+// The corner of the triangle across a wing edge; -1 on the boundary.
+int32_t across(const LevelMesh& mesh, const WingEdge& e) { return mesh.third(e.v, e.u); }
+
+// Wing of the 8-point stencil across edge e: the corner across, or the
 // reflection u + v - w when the edge is on the boundary.
-void wing(const LevelMesh& mesh, int32_t u, int32_t v, int32_t w, std::vector<Tap>* out) {
+void wing(const LevelMesh& mesh, const WingEdge& e, std::vector<Tap>* out) {
   constexpr double kWing = -1.0 / 16;
-  const int32_t across = mesh.third(v, u);
-  if (across >= 0) {
-    add(out, across, kWing);
+  const int32_t corner = across(mesh, e);
+  if (corner >= 0) {
+    add(out, corner, kWing);
     return;
   }
-  add(out, u, kWing);
-  add(out, v, kWing);
-  add(out, w, -kWing);
+  add(out, e.u, kWing);
+  add(out, e.v, kWing);
+  add(out, e.w, -kWing);
 }
 
 // Triangles (a, b, x) and (b, a, y).
@@ -96,10 +110,7 @@ void eight_point(const LevelMesh& mesh, int32_t a, int32_t b, int32_t x, int32_t
   add(out, b, 0.5);
   add(out, x, 1.0 / 8);
   add(out, y, 1.0 / 8);
-  wing(mesh, b, x, a, out);
-  wing(mesh, x, a, b, out);
-  wing(mesh, a, y, b, out);
-  wing(mesh, y, b, a, out);
+  for (const WingEdge& e : wing_edges(a, b, x, y)) wing(mesh, e, out);
 }
 
 // A scratch array of n values on the stack, or on the heap when n exceeds
@@ -276,12 +287,10 @@ StatusOr<LevelMesh> LevelMesh::build(const std::vector<std::array<int32_t, 3>>& 
 std::array<int32_t, 4> regular_wings(const LevelMesh& mesh, int32_t a, int32_t b, int32_t left, int32_t right) {
   const std::array<int32_t, 4> none{-1, -1, -1, -1};
   if (left < 0 || right < 0 || !eight_point_rule(mesh, a, b)) return none;
-  // The corners across the edges of (a, b, left) and (b, a, right) other
-  // than (a, b), as eight_point's wings.
-  const std::array<int32_t, 4> w{mesh.third(left, b), mesh.third(a, left), mesh.third(right, a),
-                                 mesh.third(b, right)};
-  for (int32_t v : w)
-    if (v < 0) return none;
+  std::array<int32_t, 4> w = none;
+  const std::array<WingEdge, 4> edges = wing_edges(a, b, left, right);
+  for (int k = 0; k < 4; ++k)
+    if ((w[k] = across(mesh, edges[k])) < 0) return none;
   return w;
 }
 
