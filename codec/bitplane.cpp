@@ -90,6 +90,18 @@ struct ForestIndex {
   std::vector<uint32_t> children;
   std::vector<uint16_t> model_set;    // per node: dense id of (level, context_class)
   size_t model_sets = 0;
+
+  bool has_children(uint32_t n) const { return child_begin[n] != child_begin[n + 1]; }
+  bool level_has_children(int level) const {
+    return child_begin[level_begin[level]] != child_begin[level_begin[level + 1]];
+  }
+  // Sets node n's children's bits in the bitset `reached`.
+  void mark_children(uint32_t n, uint64_t* reached) const {
+    for (uint32_t k = child_begin[n]; k < child_begin[n + 1]; ++k) {
+      const uint32_t child = children[k];
+      reached[child >> 6] |= uint64_t{1} << (child & 63);
+    }
+  }
 };
 
 ForestIndex build_index(const CoefficientForest& f) {
@@ -101,14 +113,17 @@ ForestIndex build_index(const CoefficientForest& f) {
   for (int l = x.max_level; l >= 1; --l) x.level_begin[l] = std::min(x.level_begin[l], x.level_begin[l + 1]);
   x.level_begin[0] = 0;
 
-  x.child_begin.assign(n + 1, 0);
+  // Counted into child_begin[p + 2] and summed, child_begin[p + 1] is where
+  // p's children start; filling moves it to where they end, which is
+  // child_begin[p + 1]'s final value (no second array of cursors).
+  x.child_begin.assign(n + 2, 0);
   for (size_t i = 0; i < n; ++i)
-    if (f.parent[i] >= 0) ++x.child_begin[static_cast<size_t>(f.parent[i]) + 1];
-  for (size_t i = 0; i < n; ++i) x.child_begin[i + 1] += x.child_begin[i];
-  x.children.resize(x.child_begin[n]);
-  std::vector<uint32_t> fill(x.child_begin.begin(), x.child_begin.end() - 1);
+    if (f.parent[i] >= 0) ++x.child_begin[static_cast<size_t>(f.parent[i]) + 2];
+  for (size_t i = 2; i <= n + 1; ++i) x.child_begin[i] += x.child_begin[i - 1];
+  x.children.resize(x.child_begin[n + 1]);
   for (size_t i = 0; i < n; ++i)
-    if (f.parent[i] >= 0) x.children[fill[static_cast<size_t>(f.parent[i])]++] = static_cast<uint32_t>(i);
+    if (f.parent[i] >= 0) x.children[x.child_begin[static_cast<size_t>(f.parent[i]) + 1]++] = static_cast<uint32_t>(i);
+  x.child_begin.pop_back();
 
   std::vector<int32_t> dense(256 * kMaxContextClasses, -1);
   x.model_set.resize(n);
@@ -120,7 +135,7 @@ ForestIndex build_index(const CoefficientForest& f) {
   return x;
 }
 
-enum NodeFlag : uint8_t { kNegative = 1, kDescendants = 2, kSeen = 4, kHasChildren = 8 };
+enum NodeFlag : uint8_t { kNegative = BitplaneValues::kNegativeFlag, kDescendants = 2, kSeen = 4, kHasChildren = 8 };
 
 // The state both sides keep: what the decoder knows after each group.
 struct CoderState {
@@ -143,7 +158,7 @@ struct CoderState {
         significant_count(static_cast<size_t>(x.max_level) + 2, 0), raw_planes(raw) {
     for (size_t i = 0; i < f.parent.size(); ++i) {
       if (f.parent[i] < 0) reached[i >> 6] |= uint64_t{1} << (i & 63);
-      if (x.child_begin[i] != x.child_begin[i + 1]) flags[i] = kHasChildren;
+      if (x.has_children(static_cast<uint32_t>(i))) flags[i] = kHasChildren;
     }
   }
 
@@ -202,10 +217,7 @@ struct CoderState {
     flags[n] |= kSeen;
     if (desc) {
       flags[n] |= kDescendants;
-      for (uint32_t c = index.child_begin[n]; c < index.child_begin[n + 1]; ++c) {
-        const uint32_t child = index.children[c];
-        reached[child >> 6] |= uint64_t{1} << (child & 63);
-      }
+      index.mark_children(n, reached.data());
     }
     return true;
   }
@@ -356,8 +368,6 @@ bool decode_level(CoderState& state, const LevelContext& ctx, int p, int level, 
   constexpr size_t kGroupSymbols = 3;
   const int32_t* const parent = state.forest.parent.data();
   const uint16_t* const model_set = state.index.model_set.data();
-  const uint32_t* const child_begin = state.index.child_begin.data();
-  const uint32_t* const children = state.index.children.data();
   ModelSet* const models = ctx.models;
   uint8_t* const flags = state.flags.data();
   int8_t* const sig_plane = state.sig_plane.data();
@@ -438,11 +448,7 @@ bool decode_level(CoderState& state, const LevelContext& ctx, int p, int level, 
       if (rc.decode(m.desc[own * 2 + unseen])) {
         f |= kDescendants;
         if (log != nullptr) log->descendants[log->descendants_count++] = n;
-        if (mark_children)
-          for (uint32_t c = child_begin[n]; c < child_begin[n + 1]; ++c) {
-            const uint32_t child = children[c];
-            reached[child >> 6] |= uint64_t{1} << (child & 63);
-          }
+        if (mark_children) state.index.mark_children(n, reached);
       }
     }
     flags[n] = f | kSeen;
@@ -740,35 +746,6 @@ Status validate_segments(const std::vector<BitplaneSegmentView>& segments, int t
   return ok_status();
 }
 
-std::vector<double> reconstruct(const CoderState& state) {
-  const size_t n = state.flags.size();
-  // 2^(plane - 1): the middle of the unknown low bits. A node never found
-  // significant has magnitude 0, low_plane -1 (entry 31: 0) and no sign, so
-  // it gives 0 without a branch, which would be mispredicted on every other
-  // node of a partly decoded level.
-  static_assert(kMaxBitplane < 31, "entry 31 is the insignificant nodes'");
-  double half_step[32];
-  for (int p = 0; p <= kMaxBitplane; ++p) half_step[p] = std::ldexp(1.0, p - 1);
-  for (int p = kMaxBitplane + 1; p < 32; ++p) half_step[p] = 0.0;
-  std::vector<double> values(n);
-  const uint32_t* const magnitude = state.magnitude.data();
-  const int8_t* const low_plane = state.low_plane.data();
-  const uint8_t* const flags = state.flags.data();
-  for (size_t i = 0; i < n; ++i) {
-    const double v = magnitude[i] + half_step[low_plane[i] & 31];
-    values[i] = (flags[i] & kNegative) ? -v : v;
-  }
-  return values;
-}
-
-}  // namespace
-
-namespace {
-
-bool has_children(const ForestIndex& index, int level) {
-  return index.child_begin[index.level_begin[level]] != index.child_begin[index.level_begin[level + 1]];
-}
-
 LevelContext own_context(CoderState& state) {
   return {state.models.data(), state.reached.data(), state.sig_plane.data(), state.flags.data()};
 }
@@ -777,7 +754,7 @@ LevelContext own_context(CoderState& state) {
 // segment ended before the level did.
 bool decode_segment(CoderState& state, const LevelContext& ctx, const BitplaneSegmentView& segment, int p, int l,
                     size_t* symbols, EventLog* log, bool mark_children = true) {
-  const bool leaves = !has_children(state.index, l);
+  const bool leaves = !state.index.level_has_children(l);
   if (p >= state.raw_planes) {
     ArithmeticDecoder dec(segment.data, segment.size);
     return leaves ? decode_level<true>(state, ctx, p, l, dec, symbols, nullptr)
@@ -889,10 +866,7 @@ bool decode_pipelined(CoderState& state, int top_plane, const std::vector<Bitpla
       }
       for (; desc_read < desc_end; ++desc_read) {
         const uint32_t u = descendants[desc_read];
-        for (uint32_t c = index.child_begin[u]; c < index.child_begin[u + 1]; ++c) {
-          const uint32_t child = index.children[c];
-          fine_reached[child >> 6] |= uint64_t{1} << (child & 63);
-        }
+        index.mark_children(u, fine_reached.data());
       }
       const int k = table[static_cast<size_t>(top_plane - p) * levels + (L - 1)];
       if (k < 0) {
@@ -977,11 +951,32 @@ bool decode_pipelined(CoderState& state, int top_plane, const std::vector<Bitpla
 // Below this many nodes in the finest level, a thread costs more than it saves.
 constexpr uint32_t kPipelineMinNodes = 1 << 14;
 
+// The decoder's result, taken from its state.
+BitplaneValues values_of(CoderState& state) {
+  return BitplaneValues(std::move(state.magnitude), std::move(state.low_plane), std::move(state.flags));
+}
+
 }  // namespace
+
+std::vector<double> BitplaneValues::values() const {
+  std::vector<double> out(size());
+  for (size_t i = 0; i < out.size(); ++i) out[i] = value(i);
+  return out;
+}
 
 StatusOr<std::vector<double>> decode_bitplanes(const CoefficientForest& forest, int top_plane,
                                                const std::vector<BitplaneSegmentView>& segments, int max_level,
                                                BitplaneDecodeStats* stats, BitplaneThreads threads, int raw_planes) {
+  StatusOr<BitplaneValues> decoded =
+      decode_bitplane_values(forest, top_plane, segments, max_level, stats, threads, raw_planes);
+  if (!decoded.ok()) return decoded.status();
+  return decoded->values();
+}
+
+StatusOr<BitplaneValues> decode_bitplane_values(const CoefficientForest& forest, int top_plane,
+                                                const std::vector<BitplaneSegmentView>& segments, int max_level,
+                                                BitplaneDecodeStats* stats, BitplaneThreads threads,
+                                                int raw_planes) {
   SRCODEC_RETURN_IF_ERROR(validate_forest(forest));
   if (raw_planes < 0 || raw_planes > kMaxBitplane + 1)
     return parse_error("bit planes: " + std::to_string(raw_planes) + " raw planes, outside 0.." +
@@ -1007,13 +1002,13 @@ StatusOr<std::vector<double>> decode_bitplanes(const CoefficientForest& forest, 
   const bool big = index.level_begin[levels + 1] - index.level_begin[levels] >= kPipelineMinNodes;
   if (can_pipeline && (threads == BitplaneThreads::kPipelined || (several_cores && big))) {
     CoderState state(forest, index, raw_planes);
-    if (decode_pipelined(state, top_plane, segments, levels, st)) return reconstruct(state);
+    if (decode_pipelined(state, top_plane, segments, levels, st)) return values_of(state);
     st = BitplaneDecodeStats{};
     st.last_complete_plane = top_plane + 1;
   }
   CoderState state(forest, index, raw_planes);
   decode_sequential(state, top_plane, segments, levels, st);
-  return reconstruct(state);
+  return values_of(state);
 }
 
 }  // namespace srcodec

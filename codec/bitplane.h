@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "format/status.h"
@@ -91,8 +92,57 @@ struct BitplaneDecodeStats {
 // whenever it can (for tests). All three give the same values and stats.
 enum class BitplaneThreads { kAuto, kSequential, kPipelined };
 
+// What decode_bitplanes returns, kept as the decoder's own per-node state
+// (6 bytes a node, where the values take 8): value(i) is the value of node i
+// described above. For a caller that scales the values into its own array,
+// which then needs no array of doubles in between.
+class BitplaneValues {
+ public:
+  BitplaneValues() = default;
+  BitplaneValues(std::vector<uint32_t> magnitude, std::vector<int8_t> low_plane, std::vector<uint8_t> flags)
+      : magnitude_(std::move(magnitude)), low_plane_(std::move(low_plane)), flags_(std::move(flags)) {}
+
+  size_t size() const { return magnitude_.size(); }
+  double value(size_t i) const {
+    // A node never found significant has magnitude 0 and low plane -1 (entry
+    // 31 of the table: 0), so it gives 0 without a branch, which would be
+    // mispredicted on every other node of a partly decoded level.
+    const double v = magnitude_[i] + kHalfStep.at[static_cast<uint8_t>(low_plane_[i]) & 31];
+    return (flags_[i] & kNegativeFlag) ? -v : v;
+  }
+  // Every value(i), in node order.
+  std::vector<double> values() const;
+
+  static constexpr uint8_t kNegativeFlag = 1;  // in flags_
+
+ private:
+  // 2^(plane - 1), the middle of the unknown bits below the lowest decoded
+  // plane; entries above kMaxBitplane are 0.
+  static_assert(kMaxBitplane < 31, "entry 31 is the insignificant nodes'");
+  struct HalfSteps {
+    double at[32];
+  };
+  static constexpr HalfSteps kHalfStep = [] {
+    HalfSteps t{};
+    double h = 0.5;
+    for (int p = 0; p <= kMaxBitplane; ++p, h *= 2.0) t.at[p] = h;
+    return t;
+  }();
+
+  std::vector<uint32_t> magnitude_;  // known bits of |q|
+  std::vector<int8_t> low_plane_;    // lowest plane decoded, -1: never significant
+  std::vector<uint8_t> flags_;       // kNegativeFlag for a negative value
+};
+
 // `raw_planes`: as the encoder's (an error outside 0..kMaxBitplane + 1).
 // Raw bits count as symbols in the stats.
+StatusOr<BitplaneValues> decode_bitplane_values(const CoefficientForest& forest, int top_plane,
+                                                const std::vector<BitplaneSegmentView>& segments, int max_level,
+                                                BitplaneDecodeStats* stats = nullptr,
+                                                BitplaneThreads threads = BitplaneThreads::kAuto,
+                                                int raw_planes = 0);
+
+// The same as a vector of values.
 StatusOr<std::vector<double>> decode_bitplanes(const CoefficientForest& forest, int top_plane,
                                                const std::vector<BitplaneSegmentView>& segments, int max_level,
                                                BitplaneDecodeStats* stats = nullptr,

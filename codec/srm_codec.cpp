@@ -297,24 +297,25 @@ StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const DecodeOptions& option
     }
   }
   BitplaneDecodeStats stats;
-  StatusOr<std::vector<double>> values = decode_bitplanes(layout.forest, h.top_plane, views, level + 1, &stats,
-                                                          BitplaneThreads::kAuto, h.raw_planes);
+  StatusOr<BitplaneValues> values = decode_bitplane_values(layout.forest, h.top_plane, views, level + 1, &stats,
+                                                           BitplaneThreads::kAuto, h.raw_planes);
   if (!values.ok()) return values.status().with_context("coefficients");
   out.last_plane = stats.last_complete_plane > h.top_plane ? -1 : stats.last_complete_plane;
   const std::vector<double> steps = step_table(h);
   std::vector<Eigen::Vector3d> base_positions = base->positions;
   std::vector<Eigen::Vector3d> detail(hier.vertex_count(), Eigen::Vector3d::Zero());
-  const double* value = values->data();
-  for (size_t k = 0; k < layout.vertex.size(); ++k, value += kSrmComponents) {
+  for (size_t k = 0, node = 0; k < layout.vertex.size(); ++k, node += kSrmComponents) {
     const int32_t v = layout.vertex[k];
     const int f = hier.vertex_level(v);
     const double* step = &steps[f * kSrmComponents];
     if (f == 0) {
-      for (int c = 0; c < kSrmComponents; ++c) base_positions[v][c] += value[c] * step[c];
+      for (int c = 0; c < kSrmComponents; ++c) base_positions[v][c] += values->value(node + c) * step[c];
     } else {
       // Zeros (never significant) stay as they are: most of a short stream.
-      for (int c = 0; c < kSrmComponents; ++c)
-        if (value[c] != 0.0) detail[v][c] = value[c] * step[c];
+      for (int c = 0; c < kSrmComponents; ++c) {
+        const double value = values->value(node + c);
+        if (value != 0.0) detail[v][c] = value * step[c];
+      }
     }
   }
   // (An early return before this joins the job in the future's destructor,
