@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cmath>
 #include <future>
+#include <system_error>
 
 #include "codec/base_mesh_coder.h"
 #include "codec/bitplane.h"
@@ -18,6 +19,8 @@ constexpr int32_t kMaxQuantized = (1 << kSrmMaxPlane) - 1;
 
 // Below this much fresh hierarchy memory the decoder does not prefault it.
 constexpr size_t kPrefaultMinBytes = size_t{4} << 20;
+// From this many vertices on, the decoder scales the coefficients on two threads.
+constexpr size_t kParallelScaleVertices = size_t{1} << 15;
 
 // The coefficient forest of a hierarchy up to `levels`: three nodes (one per
 // component) per base vertex (f = 0, the base residual), then per vertex of
@@ -303,21 +306,39 @@ StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const DecodeOptions& option
   out.last_plane = stats.last_complete_plane > h.top_plane ? -1 : stats.last_complete_plane;
   const std::vector<double> steps = step_table(h);
   std::vector<Eigen::Vector3d> base_positions = base->positions;
-  std::vector<Eigen::Vector3d> detail(hier.vertex_count(), Eigen::Vector3d::Zero());
-  for (size_t k = 0, node = 0; k < layout.vertex.size(); ++k, node += kSrmComponents) {
-    const int32_t v = layout.vertex[k];
-    const int f = hier.vertex_level(v);
-    const double* step = &steps[f * kSrmComponents];
-    if (f == 0) {
-      for (int c = 0; c < kSrmComponents; ++c) base_positions[v][c] += values->value(node + c) * step[c];
-    } else {
-      // Zeros (never significant) stay as they are: most of a short stream.
-      for (int c = 0; c < kSrmComponents; ++c) {
-        const double value = values->value(node + c);
-        if (value != 0.0) detail[v][c] = value * step[c];
+  // The forest holds every vertex of the replayed hierarchy once (its levels
+  // are all <= `level`), so each detail is written below, zero or not, and
+  // the array need not be cleared first (Eigen leaves it uninitialized).
+  // Base vertices' slots get zeros (the lifting does not read them as details).
+  std::vector<Eigen::Vector3d> detail(hier.vertex_count());
+  if (layout.vertex.size() != detail.size()) std::fill(detail.begin(), detail.end(), Eigen::Vector3d::Zero());
+  const auto scale = [&](size_t from, size_t to) {
+    for (size_t k = from; k < to; ++k) {
+      const int32_t v = layout.vertex[k];
+      const int f = hier.vertex_level(v);
+      const double* step = &steps[f * kSrmComponents];
+      const size_t node = k * kSrmComponents;
+      Eigen::Vector3d& d = detail[v];
+      for (int c = 0; c < kSrmComponents; ++c) d[c] = values->value(node + c) * step[c];
+      if (f == 0) {
+        base_positions[v] += d;
+        d.setZero();
       }
     }
+  };
+  // On a big mesh, half of it on the other core (the plan's thread is done
+  // or nearly: this also spreads the page faults of `detail`).
+  const size_t vertices = layout.vertex.size(), half = vertices / 2;
+  std::future<void> other_half;
+  if (vertices >= kParallelScaleVertices) {
+    try {
+      other_half = std::async(std::launch::async, scale, half, vertices);
+    } catch (const std::system_error&) {
+      // No thread: this one does it all.
+    }
   }
+  scale(0, other_half.valid() ? half : vertices);
+  if (other_half.valid()) other_half.get();
   // (An early return before this joins the job in the future's destructor,
   // which runs before `hier` is destroyed.)
   if (!triangles_claimed.exchange(true)) triangles = hier.level_triangles(level);
