@@ -257,11 +257,12 @@ StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const DecodeOptions& option
       TriangleHierarchy::create(static_cast<int32_t>(h.base_vertices), base->triangles);
   if (!created.ok()) return created.status().with_context("the base mesh is not valid");
   TriangleHierarchy& hier = created.value();
-  // A closed regular level of V vertices has 2V triangles, and the nodes of
-  // all levels are 4/3 of the finest ones: ~3 nodes per new vertex. (Only a
-  // hint: `total` is within the vertex limit, a corrupt count costs nothing.)
+  // Every split makes 4 nodes and the midpoints of its 3 edges, each new
+  // vertex the midpoint of at most 2 splits: splits <= 2/3 of the new
+  // vertices, which a closed uniform hierarchy reaches. (Only a hint: `total`
+  // is within the vertex limit, a corrupt count costs nothing.)
   const uint64_t new_vertices = total > h.base_vertices ? total - h.base_vertices : 0;
-  hier.reserve(h.base_triangles + 3 * new_vertices, total);
+  hier.reserve(h.base_triangles + 4 * (2 * new_vertices / 3), total);
   // The replay runs on this thread and writes those arrays (~16 MB on the
   // bunny's 4 levels) for the first time: the other core maps their pages
   // meanwhile, which a page fault per 4 KB did here before. (Stopped on

@@ -480,6 +480,13 @@ void check_random(const Base& base, uint32_t seed, int splits, int32_t max_level
   EXPECT_TRUE(check_levels(h, base));
   EXPECT_TRUE(check_vertex_records(h, base));
   EXPECT_EQ(h.max_level(), max_level) << "the random splits should reach the deepest level allowed";
+  // The decoder reserves nodes by this bound (codec/srm_codec.cpp): each
+  // split makes 4 nodes and its edges' midpoints, each new vertex the
+  // midpoint of at most 2 splits.
+  size_t base_faces = 0;
+  for (const TriangleHierarchy::Node& n : h.nodes()) base_faces += n.level == 0 ? 1 : 0;
+  const size_t new_vertices = static_cast<size_t>(h.vertex_count() - h.base_vertex_count());
+  EXPECT_LE(h.nodes().size() - base_faces, 4 * (2 * new_vertices / 3));
 }
 
 TEST(TriangleHierarchy, RandomSplitsIcosahedron) { check_random(base_of(test::icosphere(0, 1.0)), 1, 300, 7); }
