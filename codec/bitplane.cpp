@@ -86,23 +86,48 @@ struct ModelSet {
 struct ForestIndex {
   int max_level = 0;
   std::vector<uint32_t> level_begin;  // level l: nodes [level_begin[l], level_begin[l + 1])
-  std::vector<uint32_t> child_begin;  // CSR over children, size nodes + 1
-  std::vector<uint32_t> children;
+  // Nodes in groups of `group` consecutive ones: 3 when every run of three
+  // (from node 0) is one vertex's x, y and z coefficients (one level, and
+  // parents that are one earlier such run, component by component: the .srm
+  // forest), else 1. The children are listed per group, in a third of the
+  // memory: node n's children are the nodes in n's place of its group's
+  // child groups.
+  uint32_t group = 1;
+  std::vector<uint32_t> child_begin;  // CSR over the groups' child groups, size groups + 1
+  std::vector<uint32_t> children;     // group ids
   std::vector<uint16_t> model_set;    // per node: dense id of (level, context_class)
   size_t model_sets = 0;
 
-  bool has_children(uint32_t n) const { return child_begin[n] != child_begin[n + 1]; }
+  uint32_t group_of(uint32_t n) const { return group == 3 ? n / 3 : n; }
+  bool has_children(uint32_t n) const {
+    const uint32_t g = group_of(n);
+    return child_begin[g] != child_begin[g + 1];
+  }
   bool level_has_children(int level) const {
-    return child_begin[level_begin[level]] != child_begin[level_begin[level + 1]];
+    return child_begin[group_of(level_begin[level])] != child_begin[group_of(level_begin[level + 1])];
   }
   // Sets node n's children's bits in the bitset `reached`.
   void mark_children(uint32_t n, uint64_t* reached) const {
-    for (uint32_t k = child_begin[n]; k < child_begin[n + 1]; ++k) {
-      const uint32_t child = children[k];
+    const uint32_t g = group_of(n), component = n - g * group;
+    for (uint32_t k = child_begin[g]; k < child_begin[g + 1]; ++k) {
+      const uint32_t child = children[k] * group + component;
       reached[child >> 6] |= uint64_t{1} << (child & 63);
     }
   }
 };
+
+// True when the forest's nodes come in runs of three as ForestIndex::group says.
+bool grouped_by_three(const CoefficientForest& f) {
+  const size_t n = f.parent.size();
+  if (n == 0 || n % 3 != 0) return false;
+  for (size_t k = 0; k < n; k += 3) {
+    const int32_t p = f.parent[k];
+    if (p >= 0 && p % 3 != 0) return false;
+    for (size_t c = 1; c < 3; ++c)
+      if (f.level[k + c] != f.level[k] || f.parent[k + c] != (p < 0 ? -1 : p + static_cast<int32_t>(c))) return false;
+  }
+  return true;
+}
 
 ForestIndex build_index(const CoefficientForest& f) {
   ForestIndex x;
@@ -113,16 +138,22 @@ ForestIndex build_index(const CoefficientForest& f) {
   for (int l = x.max_level; l >= 1; --l) x.level_begin[l] = std::min(x.level_begin[l], x.level_begin[l + 1]);
   x.level_begin[0] = 0;
 
+  x.group = grouped_by_three(f) ? 3 : 1;
+  const size_t groups = n / x.group;
   // Counted into child_begin[p + 2] and summed, child_begin[p + 1] is where
-  // p's children start; filling moves it to where they end, which is
+  // group p's children start; filling moves it to where they end, which is
   // child_begin[p + 1]'s final value (no second array of cursors).
-  x.child_begin.assign(n + 2, 0);
-  for (size_t i = 0; i < n; ++i)
-    if (f.parent[i] >= 0) ++x.child_begin[static_cast<size_t>(f.parent[i]) + 2];
-  for (size_t i = 2; i <= n + 1; ++i) x.child_begin[i] += x.child_begin[i - 1];
-  x.children.resize(x.child_begin[n + 1]);
-  for (size_t i = 0; i < n; ++i)
-    if (f.parent[i] >= 0) x.children[x.child_begin[static_cast<size_t>(f.parent[i]) + 1]++] = static_cast<uint32_t>(i);
+  x.child_begin.assign(groups + 2, 0);
+  for (size_t g = 0; g < groups; ++g) {
+    const int32_t p = f.parent[g * x.group];
+    if (p >= 0) ++x.child_begin[static_cast<size_t>(p) / x.group + 2];
+  }
+  for (size_t i = 2; i <= groups + 1; ++i) x.child_begin[i] += x.child_begin[i - 1];
+  x.children.resize(x.child_begin[groups + 1]);
+  for (size_t g = 0; g < groups; ++g) {
+    const int32_t p = f.parent[g * x.group];
+    if (p >= 0) x.children[x.child_begin[static_cast<size_t>(p) / x.group + 1]++] = static_cast<uint32_t>(g);
+  }
   x.child_begin.pop_back();
 
   std::vector<int32_t> dense(256 * kMaxContextClasses, -1);
