@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <future>
 #include <string>
 
@@ -86,7 +87,7 @@ Vector3d predict(const LiftingPlan::Odd& o, const LiftingPlan::Tap* taps, const 
     return 0.5 * (x[o.a] + x[o.b]) + 0.125 * (x[o.left] + x[o.right]) -
            0.0625 * ((x[o.wing[0]] + x[o.wing[1]]) + (x[o.wing[2]] + x[o.wing[3]]));
   Vector3d p = Vector3d::Zero();
-  for (uint32_t i = o.taps_begin; i < o.taps_end; ++i) p += taps[i].weight * x[taps[i].vertex];
+  for (uint32_t i = o.taps_begin(); i < o.taps_end(); ++i) p += taps[i].weight * x[taps[i].vertex];
   return p;
 }
 
@@ -158,19 +159,24 @@ StatusOr<LiftingPlan> LiftingPlan::build(const TriangleHierarchy& hierarchy, int
         return internal_error("lifting: parent edge (" + std::to_string(o.a) + ", " + std::to_string(o.b) +
                               ") of vertex " + std::to_string(o.v) + " is not an edge of the level-" +
                               std::to_string(j - 1) + " mesh");
-      o.update_a = kUpdateWeight / mesh.valence(o.a);
-      o.update_b = kUpdateWeight / mesh.valence(o.b);
-      o.taps_begin = static_cast<uint32_t>(plan.taps_.size());
+      o.valence_a = static_cast<uint32_t>(mesh.valence(o.a));
+      o.valence_b = static_cast<uint32_t>(mesh.valence(o.b));
       o.wing = regular_wings(mesh, o.a, o.b, o.left, o.right);
-      if (!o.regular()) butterfly_taps(mesh, o.a, o.b, o.left, o.right, &plan.taps_);
-      o.taps_end = static_cast<uint32_t>(plan.taps_.size());
+      if (!o.regular()) {
+        const size_t taps_begin = plan.taps_.size();
+        butterfly_taps(mesh, o.a, o.b, o.left, o.right, &plan.taps_);
+        if (plan.taps_.size() > static_cast<size_t>(INT32_MAX))
+          return invalid_argument("lifting: over 2^31 stencil taps");
+        o.wing[1] = static_cast<int32_t>(taps_begin);
+        o.wing[2] = static_cast<int32_t>(plan.taps_.size());
+      }
     }
   }
   return plan;
 }
 
 std::vector<LiftingPlan::Tap> LiftingPlan::stencil(const Odd& o) const {
-  if (!o.regular()) return {taps_.begin() + o.taps_begin, taps_.begin() + o.taps_end};
+  if (!o.regular()) return {taps_.begin() + o.taps_begin(), taps_.begin() + o.taps_end()};
   return {{o.a, 0.5},          {o.b, 0.5},          {o.left, 0.125},     {o.right, 0.125},
           {o.wing[0], -0.0625}, {o.wing[1], -0.0625}, {o.wing[2], -0.0625}, {o.wing[3], -0.0625}};
 }
@@ -188,8 +194,8 @@ WaveletCoefficients forward_lifting(const LiftingPlan& plan, const std::vector<V
     for (const auto* o = begin; o != end; ++o) out.detail[o->v] = x[o->v] - predict(*o, taps, x);
     for (const auto* o = begin; o != end; ++o) {
       const Vector3d& d = out.detail[o->v];
-      x[o->a] += o->update_a * d;
-      x[o->b] += o->update_b * d;
+      x[o->a] += o->update_a() * d;
+      x[o->b] += o->update_b() * d;
     }
     for (const auto* o = begin; o != end; ++o) {
       const Frame f = odd_frame(*o, x);
@@ -258,8 +264,8 @@ std::vector<Vector3d> inverse_lifting(const LiftingPlan& plan, const std::vector
     for (const auto* o = begin; o != end; ++o) {
       const Vector3d d = x[o->v];
       if (d.x() == 0.0 && d.y() == 0.0 && d.z() == 0.0) continue;
-      x[o->a] -= o->update_a * d;
-      x[o->b] -= o->update_b * d;
+      x[o->a] -= o->update_a() * d;
+      x[o->b] -= o->update_b() * d;
     }
     in_halves(add_prediction);
   }

@@ -51,12 +51,23 @@ class LiftingPlan {
     // The regular case, most odd vertices: the 8-point stencil with its four
     // wings present, 1/2 on a and b, 1/8 on left and right, -1/16 on the
     // wings (the corners across the edges (left, b), (a, left), (right, a),
-    // (b, right)). Such an odd has no taps. -1 otherwise.
+    // (b, right)). Such an odd has no taps. Otherwise wing[0] is -1 and
+    // wing[1], wing[2] hold the range of its stencil in taps() (see
+    // taps_begin(); one field for either keeps the plan 44 bytes an odd).
     std::array<int32_t, 4> wing{-1, -1, -1, -1};
-    double update_a = 0, update_b = 0;
-    uint32_t taps_begin = 0, taps_end = 0;  // into taps(): the stencil when not regular
+    // Valences of a and b in the level-(j-1) mesh, the update weights' divisors.
+    uint32_t valence_a = 1, valence_b = 1;
     bool regular() const { return wing[0] >= 0; }
+    uint32_t taps_begin() const { return regular() ? 0 : static_cast<uint32_t>(wing[1]); }
+    uint32_t taps_end() const { return regular() ? 0 : static_cast<uint32_t>(wing[2]); }
+    double update_a() const { return update_weight(valence_a); }
+    double update_b() const { return update_weight(valence_b); }
   };
+  // kUpdateWeight / valence, looked up for the common valences (the same
+  // values as the division).
+  static double update_weight(uint32_t valence) {
+    return valence < kUpdateWeights.size() ? kUpdateWeights[valence] : kUpdateWeight / valence;
+  }
   // The odd vertices of level j (1 <= j <= levels(); empty beyond max_level).
   const Odd* odd_begin(int32_t level) const;
   const Odd* odd_end(int32_t level) const;
@@ -70,6 +81,12 @@ class LiftingPlan {
   int32_t built_levels_ = 0;  // min(levels_, hierarchy.max_level())
   int32_t base_vertex_count_ = 0;
   int32_t vertex_count_ = 0;
+  static constexpr std::array<double, 32> kUpdateWeights = [] {
+    std::array<double, 32> w{};
+    for (size_t k = 1; k < w.size(); ++k) w[k] = kUpdateWeight / static_cast<double>(k);
+    return w;
+  }();
+
   std::vector<Odd> odds_;               // level by level
   std::vector<uint32_t> level_begin_;   // odds of level j: [level_begin_[j-1], level_begin_[j])
   std::vector<Tap> taps_;
