@@ -166,7 +166,7 @@ ForestIndex build_index(const CoefficientForest& f) {
   return x;
 }
 
-enum NodeFlag : uint8_t { kNegative = BitplaneValues::kNegativeFlag, kDescendants = 2, kSeen = 4, kHasChildren = 8 };
+enum NodeFlag : uint8_t { kNegative = BitplaneValueView::kNegativeFlag, kDescendants = 2, kSeen = 4, kHasChildren = 8 };
 
 // The state both sides keep: what the decoder knows after each group.
 struct CoderState {
@@ -855,7 +855,7 @@ void decode_sequential(CoderState& state, int top_plane, const std::vector<Bitpl
 // never have touched: returns false then (only corrupt input: in a cut file
 // the short segment is the last one), and the caller decodes again sequentially.
 bool decode_pipelined(CoderState& state, int top_plane, const std::vector<BitplaneSegmentView>& segments, int levels,
-                      BitplaneDecodeStats& st) {
+                      BitplaneDecodeStats& st, const CoarseLevelsDone& coarse_done) {
   const ForestIndex& index = state.index;
   const int L = levels;
   const uint32_t coarse_nodes = index.level_begin[L];
@@ -958,6 +958,10 @@ bool decode_pipelined(CoderState& state, int top_plane, const std::vector<Bitpla
     done_plane = p;
     published.notify_one();
   }
+  // The coarser levels are final (the finest level's thread writes only its
+  // own nodes' state): the caller may work on them meanwhile.
+  if (coarse_done)
+    coarse_done(BitplaneValueView(state.magnitude.data(), state.low_plane.data(), state.flags.data(), coarse_nodes));
   finish();
 
   const int fine_stop_plane = fine_stop.load(std::memory_order_acquire);
@@ -976,6 +980,7 @@ bool decode_pipelined(CoderState& state, int top_plane, const std::vector<Bitpla
   }
   st.complete = st.stop_plane < 0;
   st.last_complete_plane = st.complete ? 0 : st.stop_plane + 1;
+  st.coarse_done_final = static_cast<bool>(coarse_done);
   return true;
 }
 
@@ -990,8 +995,9 @@ BitplaneValues values_of(CoderState& state) {
 }  // namespace
 
 std::vector<double> BitplaneValues::values() const {
+  const BitplaneValueView all = view();
   std::vector<double> out(size());
-  for (size_t i = 0; i < out.size(); ++i) out[i] = value(i);
+  for (size_t i = 0; i < out.size(); ++i) out[i] = all.value(i);
   return out;
 }
 
@@ -1006,8 +1012,8 @@ StatusOr<std::vector<double>> decode_bitplanes(const CoefficientForest& forest, 
 
 StatusOr<BitplaneValues> decode_bitplane_values(const CoefficientForest& forest, int top_plane,
                                                 const std::vector<BitplaneSegmentView>& segments, int max_level,
-                                                BitplaneDecodeStats* stats, BitplaneThreads threads,
-                                                int raw_planes) {
+                                                BitplaneDecodeStats* stats, BitplaneThreads threads, int raw_planes,
+                                                const CoarseLevelsDone& coarse_done) {
   SRCODEC_RETURN_IF_ERROR(validate_forest(forest));
   if (raw_planes < 0 || raw_planes > kMaxBitplane + 1)
     return parse_error("bit planes: " + std::to_string(raw_planes) + " raw planes, outside 0.." +
@@ -1033,7 +1039,7 @@ StatusOr<BitplaneValues> decode_bitplane_values(const CoefficientForest& forest,
   const bool big = index.level_begin[levels + 1] - index.level_begin[levels] >= kPipelineMinNodes;
   if (can_pipeline && (threads == BitplaneThreads::kPipelined || (several_cores && big))) {
     CoderState state(forest, index, raw_planes);
-    if (decode_pipelined(state, top_plane, segments, levels, st)) return values_of(state);
+    if (decode_pipelined(state, top_plane, segments, levels, st, coarse_done)) return values_of(state);
     st = BitplaneDecodeStats{};
     st.last_complete_plane = top_plane + 1;
   }

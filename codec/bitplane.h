@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -66,6 +67,8 @@ struct BitplaneDecodeStats {
   bool complete = false;        // every expected segment was present and complete
   int stop_plane = -1;          // where decoding stopped when !complete
   int stop_level = -1;
+  // decode_bitplane_values' `coarse_done` was called, with the values returned.
+  bool coarse_done_final = false;
 };
 
 // Decodes what `segments` allow. `segments`: the segments the caller has, in
@@ -92,17 +95,16 @@ struct BitplaneDecodeStats {
 // whenever it can (for tests). All three give the same values and stats.
 enum class BitplaneThreads { kAuto, kSequential, kPipelined };
 
-// What decode_bitplanes returns, kept as the decoder's own per-node state
+// Decoded values read where the decoder keeps them, its own per-node state
 // (6 bytes a node, where the values take 8): value(i) is the value of node i
 // described above. For a caller that scales the values into its own array,
 // which then needs no array of doubles in between.
-class BitplaneValues {
+class BitplaneValueView {
  public:
-  BitplaneValues() = default;
-  BitplaneValues(std::vector<uint32_t> magnitude, std::vector<int8_t> low_plane, std::vector<uint8_t> flags)
-      : magnitude_(std::move(magnitude)), low_plane_(std::move(low_plane)), flags_(std::move(flags)) {}
+  BitplaneValueView(const uint32_t* magnitude, const int8_t* low_plane, const uint8_t* flags, size_t size)
+      : magnitude_(magnitude), low_plane_(low_plane), flags_(flags), size_(size) {}
 
-  size_t size() const { return magnitude_.size(); }
+  size_t size() const { return size_; }
   double value(size_t i) const {
     // A node never found significant has magnitude 0 and low plane -1 (entry
     // 31 of the table: 0), so it gives 0 without a branch, which would be
@@ -110,10 +112,8 @@ class BitplaneValues {
     const double v = magnitude_[i] + kHalfStep.at[static_cast<uint8_t>(low_plane_[i]) & 31];
     return (flags_[i] & kNegativeFlag) ? -v : v;
   }
-  // Every value(i), in node order.
-  std::vector<double> values() const;
 
-  static constexpr uint8_t kNegativeFlag = 1;  // in flags_
+  static constexpr uint8_t kNegativeFlag = 1;  // in flags
 
  private:
   // 2^(plane - 1), the middle of the unknown bits below the lowest decoded
@@ -129,10 +129,39 @@ class BitplaneValues {
     return t;
   }();
 
-  std::vector<uint32_t> magnitude_;  // known bits of |q|
-  std::vector<int8_t> low_plane_;    // lowest plane decoded, -1: never significant
-  std::vector<uint8_t> flags_;       // kNegativeFlag for a negative value
+  const uint32_t* magnitude_;  // known bits of |q|
+  const int8_t* low_plane_;    // lowest plane decoded, -1: never significant
+  const uint8_t* flags_;       // kNegativeFlag for a negative value
+  size_t size_;
 };
+
+// What decode_bitplane_values returns: the state a BitplaneValueView reads.
+class BitplaneValues {
+ public:
+  BitplaneValues() = default;
+  BitplaneValues(std::vector<uint32_t> magnitude, std::vector<int8_t> low_plane, std::vector<uint8_t> flags)
+      : magnitude_(std::move(magnitude)), low_plane_(std::move(low_plane)), flags_(std::move(flags)) {}
+
+  size_t size() const { return magnitude_.size(); }
+  BitplaneValueView view() const { return {magnitude_.data(), low_plane_.data(), flags_.data(), size()}; }
+  double value(size_t i) const { return view().value(i); }
+  // Every value(i), in node order.
+  std::vector<double> values() const;
+
+ private:
+  std::vector<uint32_t> magnitude_;
+  std::vector<int8_t> low_plane_;
+  std::vector<uint8_t> flags_;
+};
+
+// Called by the pipelined decode (kAuto's or kPipelined's) on the calling
+// thread once every level but the last is decoded, while the last may still
+// be: `coarse` views the nodes of those levels (a prefix of the forest) with
+// their final values, unless the decode then has to start again
+// sequentially (corrupt input only; see bitplane.cpp), which
+// BitplaneDecodeStats::coarse_done_final tells. At most once per decode;
+// never by the sequential decode.
+using CoarseLevelsDone = std::function<void(const BitplaneValueView& coarse)>;
 
 // `raw_planes`: as the encoder's (an error outside 0..kMaxBitplane + 1).
 // Raw bits count as symbols in the stats.
@@ -140,7 +169,7 @@ StatusOr<BitplaneValues> decode_bitplane_values(const CoefficientForest& forest,
                                                 const std::vector<BitplaneSegmentView>& segments, int max_level,
                                                 BitplaneDecodeStats* stats = nullptr,
                                                 BitplaneThreads threads = BitplaneThreads::kAuto,
-                                                int raw_planes = 0);
+                                                int raw_planes = 0, const CoarseLevelsDone& coarse_done = {});
 
 // The same as a vector of values.
 StatusOr<std::vector<double>> decode_bitplanes(const CoefficientForest& forest, int top_plane,

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cmath>
 #include <future>
+#include <optional>
 #include <system_error>
 
 #include "codec/base_mesh_coder.h"
@@ -272,7 +273,8 @@ StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const DecodeOptions& option
   // replay fails and stops it; at most what `max_vertices` allows, as much as
   // a valid file of a few hundred bytes (all-split flags, no coefficients)
   // may use.
-  const BackgroundPrefault prefaulting(hier.reserved_memory(), kPrefaultMinBytes);
+  const BackgroundPrefault prefaulting(options.threads ? hier.reserved_memory() : std::vector<MemoryRange>{},
+                                       kPrefaultMinBytes);
   StatusOr<int> reached = decode_hierarchy(file, level, hier, options.max_vertices);
   if (!reached.ok()) return reached.status();
   level = reached.value();
@@ -289,7 +291,8 @@ StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const DecodeOptions& option
   // the plan's thread after the plan, or this one after the coefficients.
   std::atomic<bool> triangles_claimed{false};
   std::vector<std::array<int32_t, 3>> triangles;
-  std::future<StatusOr<LiftingPlan>> plan_job = std::async(std::launch::async, [&] {
+  std::future<StatusOr<LiftingPlan>> plan_job =
+      std::async(options.threads ? std::launch::async : std::launch::deferred, [&] {
     StatusOr<LiftingPlan> plan = LiftingPlan::build(hier, level);
     if (!triangles_claimed.exchange(true)) triangles = hier.level_triangles(level);
     return plan;
@@ -312,11 +315,6 @@ StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const DecodeOptions& option
       if (!c.bytes.empty()) out.bytes_used = std::max<uint64_t>(out.bytes_used, c.offset + c.bytes.size());
     }
   }
-  BitplaneDecodeStats stats;
-  StatusOr<BitplaneValues> values = decode_bitplane_values(layout.forest, h.top_plane, views, level + 1, &stats,
-                                                           BitplaneThreads::kAuto, h.raw_planes);
-  if (!values.ok()) return values.status().with_context("coefficients");
-  out.last_plane = stats.last_complete_plane > h.top_plane ? -1 : stats.last_complete_plane;
   const std::vector<double> steps = step_table(h);
   std::vector<Eigen::Vector3d> base_positions = base->positions;
   // The forest holds every vertex of the replayed hierarchy once (its levels
@@ -325,39 +323,79 @@ StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const DecodeOptions& option
   // Base vertices' slots get zeros (the lifting does not read them as details).
   std::vector<Eigen::Vector3d> detail(hier.vertex_count());
   if (layout.vertex.size() != detail.size()) std::fill(detail.begin(), detail.end(), Eigen::Vector3d::Zero());
-  const auto scale = [&](size_t from, size_t to) {
+  // Scales the values of the vertices layout.vertex[from .. to) into their
+  // details, or base positions (again from the decoded base: no sum is
+  // carried over if this is redone).
+  const auto scale = [&](const BitplaneValueView& values, size_t from, size_t to) {
     for (size_t k = from; k < to; ++k) {
       const int32_t v = layout.vertex[k];
       const int f = hier.vertex_level(v);
       const double* step = &steps[f * kSrmComponents];
       const size_t node = k * kSrmComponents;
       Eigen::Vector3d& d = detail[v];
-      for (int c = 0; c < kSrmComponents; ++c) d[c] = values->value(node + c) * step[c];
+      for (int c = 0; c < kSrmComponents; ++c) d[c] = values.value(node + c) * step[c];
       if (f == 0) {
-        base_positions[v] += d;
+        base_positions[v] = base->positions[v] + d;
         d.setZero();
       }
     }
   };
-  // On a big mesh, half of it on the other core (the plan's thread is done
-  // or nearly: this also spreads the page faults of `detail`).
-  const size_t vertices = layout.vertex.size(), half = vertices / 2;
+  // The plan, once it is needed (the job's future gives it only once).
+  std::optional<StatusOr<LiftingPlan>> plan;
+  const auto take_plan = [&]() -> const StatusOr<LiftingPlan>& {
+    if (!plan) plan.emplace(plan_job.get());
+    return *plan;
+  };
+  // While the finest level's coefficients are still being decoded on the
+  // other core, this thread scales the coarser levels' (which come first in
+  // the forest) and runs their lifting steps: inverse lifting works level by
+  // level, and the finest level's step is then all that is left. Unless the
+  // decode has to start over (corrupt input only; then everything is redone).
+  size_t coarse_vertices = 0;
+  bool coarse_lifted = false;
+  const CoarseLevelsDone coarse_done = [&](const BitplaneValueView& coarse) {
+    coarse_vertices = coarse.size() / kSrmComponents;
+    scale(coarse, 0, coarse_vertices);
+    const StatusOr<LiftingPlan>& p = take_plan();
+    if (!p.ok() || !p->covers_every_vertex(level)) return;
+    inverse_lifting_in_place(p.value(), base_positions, detail, 1, level - 1, false);
+    coarse_lifted = true;
+  };
+  BitplaneDecodeStats stats;
+  StatusOr<BitplaneValues> values = decode_bitplane_values(layout.forest, h.top_plane, views, level + 1, &stats,
+                                                           options.threads ? BitplaneThreads::kAuto
+                                                                           : BitplaneThreads::kSequential,
+                                                           h.raw_planes, coarse_done);
+  if (!values.ok()) return values.status().with_context("coefficients");
+  out.last_plane = stats.last_complete_plane > h.top_plane ? -1 : stats.last_complete_plane;
+  const bool staged = coarse_lifted && stats.coarse_done_final;
+  // The rest of the vertices (all of them unless staged); on a big mesh,
+  // half of it on the other core (this also spreads the page faults of
+  // `detail`).
+  const size_t first = staged ? coarse_vertices : 0, vertices = layout.vertex.size();
+  const size_t half = first + (vertices - first) / 2;
+  const BitplaneValueView all = values->view();
   std::future<void> other_half;
-  if (vertices >= kParallelScaleVertices) {
+  if (options.threads && vertices - first >= kParallelScaleVertices) {
     try {
-      other_half = std::async(std::launch::async, scale, half, vertices);
+      other_half = std::async(std::launch::async, scale, all, half, vertices);
     } catch (const std::system_error&) {
       // No thread: this one does it all.
     }
   }
-  scale(0, other_half.valid() ? half : vertices);
+  scale(all, first, other_half.valid() ? half : vertices);
   if (other_half.valid()) other_half.get();
   // (An early return before this joins the job in the future's destructor,
   // which runs before `hier` is destroyed.)
   if (!triangles_claimed.exchange(true)) triangles = hier.level_triangles(level);
-  StatusOr<LiftingPlan> plan = plan_job.get();
-  if (!plan.ok()) return plan.status().with_context("wavelet plan");
-  std::vector<Eigen::Vector3d> positions = inverse_lifting(plan.value(), base_positions, std::move(detail), level);
+  if (!take_plan().ok()) return take_plan().status().with_context("wavelet plan");
+  std::vector<Eigen::Vector3d> positions;
+  if (staged) {
+    inverse_lifting_in_place(take_plan().value(), base_positions, detail, level, level, options.threads);
+    positions = std::move(detail);
+  } else {
+    positions = inverse_lifting(take_plan().value(), base_positions, std::move(detail), level, options.threads);
+  }
   // Every vertex of the replayed hierarchy (levels <= `level`, ids 0 ..
   // vertex_count - 1) is a corner of some triangle of the level mesh: the
   // mesh is already compact (compact_mesh would copy it unchanged).

@@ -50,6 +50,10 @@ struct DecodeOptions {
   // Refuse files that would decode to more vertices (about 500 bytes of
   // decoder memory each): a tiny file can describe a huge uniform mesh.
   uint64_t max_vertices = uint64_t{1} << 22;
+  // False: decode on the calling thread only. True: big files use a second
+  // core (coefficients, wavelet plan, lifting and page mapping side by side).
+  // The mesh is the same either way, bit for bit.
+  bool threads = true;
 };
 
 struct DecodedSrm {

@@ -9,6 +9,7 @@
 #include "wavelet/lifting.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -175,6 +176,12 @@ StatusOr<LiftingPlan> LiftingPlan::build(const TriangleHierarchy& hierarchy, int
   return plan;
 }
 
+bool LiftingPlan::covers_every_vertex(int32_t level) const {
+  size_t covered = static_cast<size_t>(base_vertex_count_);
+  for (int32_t j = 1; j <= level; ++j) covered += static_cast<size_t>(odd_end(j) - odd_begin(j));
+  return covered == static_cast<size_t>(vertex_count_);
+}
+
 std::vector<LiftingPlan::Tap> LiftingPlan::stencil(const Odd& o) const {
   if (!o.regular()) return {taps_.begin() + o.taps_begin(), taps_.begin() + o.taps_end()};
   return {{o.a, 0.5},          {o.b, 0.5},          {o.left, 0.125},     {o.right, 0.125},
@@ -207,69 +214,89 @@ WaveletCoefficients forward_lifting(const LiftingPlan& plan, const std::vector<V
   return out;
 }
 
+namespace {
+
+// Level j's step of the inverse transform on `x` (positions of levels < j),
+// reading each odd vertex's detail from `details` (which may be `x` itself:
+// each odd slot is read, as its detail, before anything writes it).
+void inverse_level(const LiftingPlan& plan, int32_t j, std::vector<Vector3d>& x, const std::vector<Vector3d>& details,
+                   bool threads) {
+  const LiftingPlan::Tap* taps = plan.taps().data();
+  const LiftingPlan::Odd* begin = plan.odd_begin(j);
+  const LiftingPlan::Odd* end = plan.odd_end(j);
+  // The world-space detail waits in the odd vertex's own slot (still zero,
+  // or its detail when in place, and read by no stencil or frame of this
+  // level) until the predict step. A zero detail needs no frame and moves
+  // nothing.
+  // The frame and predict steps touch each odd vertex's own slot only (and
+  // read even ones): on a big level, half of each runs on a second thread.
+  // The update step scatters to shared even vertices and stays serial.
+  const auto to_world = [&](const LiftingPlan::Odd* from, const LiftingPlan::Odd* to) {
+    for (const auto* o = from; o != to; ++o) {
+      if (static_cast<size_t>(o->v) >= details.size()) continue;
+      const Vector3d d = details[o->v];  // a copy: in place, x[o->v] is written below
+      if (d.x() == 0.0 && d.y() == 0.0 && d.z() == 0.0) continue;
+      const Frame f = odd_frame(*o, x);
+      x[o->v] = d.x() * f.n + d.y() * f.t + d.z() * f.s;
+    }
+  };
+  const auto add_prediction = [&](const LiftingPlan::Odd* from, const LiftingPlan::Odd* to) {
+    for (const auto* o = from; o != to; ++o) x[o->v] += predict(*o, taps, x);
+  };
+  // Runs step over [begin, end), the second half on another thread when
+  // the level is big.
+  const auto in_halves = [begin, end, threads](const auto& step) {
+    if (!threads || end - begin < kParallelOdds) return step(begin, end);
+    const LiftingPlan::Odd* middle = begin + (end - begin) / 2;
+    std::future<void> half = std::async(std::launch::async, step, middle, end);
+    step(begin, middle);
+    half.get();
+  };
+  in_halves(to_world);
+  for (const auto* o = begin; o != end; ++o) {
+    const Vector3d d = x[o->v];
+    if (d.x() == 0.0 && d.y() == 0.0 && d.z() == 0.0) continue;
+    x[o->a] -= o->update_a() * d;
+    x[o->b] -= o->update_b() * d;
+  }
+  in_halves(add_prediction);
+}
+
+}  // namespace
+
 std::vector<Vector3d> inverse_lifting(const LiftingPlan& plan, const std::vector<Vector3d>& base,
-                                      std::vector<Vector3d> detail, int32_t level) {
+                                      std::vector<Vector3d> detail, int32_t level, bool threads) {
   const size_t nv = static_cast<size_t>(plan.vertex_count());
   level = std::clamp(level, 0, plan.levels());
   // The positions are worked out in place of the details when every vertex
   // is a base vertex or an odd one of levels 1 .. level (each odd slot is
   // read, as its detail, before anything else writes it): one array of the
   // finest mesh's size less to allocate. Otherwise in a zeroed copy.
-  size_t reconstructed = static_cast<size_t>(plan.base_vertex_count());
-  for (int32_t j = 1; j <= level; ++j) reconstructed += static_cast<size_t>(plan.odd_end(j) - plan.odd_begin(j));
-  const bool in_place = detail.size() == nv && reconstructed == nv;
+  const bool in_place = detail.size() == nv && plan.covers_every_vertex(level);
   std::vector<Vector3d> x;
   if (in_place) {
     x = std::move(detail);
     detail.clear();
-    std::fill_n(x.begin(), plan.base_vertex_count(), Vector3d::Zero());
-  } else {
-    x.assign(nv, Vector3d::Zero());
+    inverse_lifting_in_place(plan, base, x, 1, level, threads);
+    return x;
   }
+  x.assign(nv, Vector3d::Zero());
   std::copy_n(base.begin(), std::min({nv, base.size(), static_cast<size_t>(plan.base_vertex_count())}), x.begin());
-  const std::vector<Vector3d>& details = in_place ? x : detail;
-  const LiftingPlan::Tap* taps = plan.taps().data();
-  for (int32_t j = 1; j <= level; ++j) {
-    const LiftingPlan::Odd* begin = plan.odd_begin(j);
-    const LiftingPlan::Odd* end = plan.odd_end(j);
-    // The world-space detail waits in the odd vertex's own slot (still zero,
-    // or its detail when in place, and read by no stencil or frame of this
-    // level) until the predict step. A zero detail needs no frame and moves
-    // nothing.
-    // The frame and predict steps touch each odd vertex's own slot only (and
-    // read even ones): on a big level, half of each runs on a second thread.
-    // The update step scatters to shared even vertices and stays serial.
-    const auto to_world = [&](const LiftingPlan::Odd* from, const LiftingPlan::Odd* to) {
-      for (const auto* o = from; o != to; ++o) {
-        if (static_cast<size_t>(o->v) >= details.size()) continue;
-        const Vector3d d = details[o->v];  // a copy: in place, x[o->v] is written below
-        if (d.x() == 0.0 && d.y() == 0.0 && d.z() == 0.0) continue;
-        const Frame f = odd_frame(*o, x);
-        x[o->v] = d.x() * f.n + d.y() * f.t + d.z() * f.s;
-      }
-    };
-    const auto add_prediction = [&](const LiftingPlan::Odd* from, const LiftingPlan::Odd* to) {
-      for (const auto* o = from; o != to; ++o) x[o->v] += predict(*o, taps, x);
-    };
-    // Runs step over [begin, end), the second half on another thread when
-    // the level is big.
-    const auto in_halves = [begin, end](const auto& step) {
-      if (end - begin < kParallelOdds) return step(begin, end);
-      const LiftingPlan::Odd* middle = begin + (end - begin) / 2;
-      std::future<void> half = std::async(std::launch::async, step, middle, end);
-      step(begin, middle);
-      half.get();
-    };
-    in_halves(to_world);
-    for (const auto* o = begin; o != end; ++o) {
-      const Vector3d d = x[o->v];
-      if (d.x() == 0.0 && d.y() == 0.0 && d.z() == 0.0) continue;
-      x[o->a] -= o->update_a() * d;
-      x[o->b] -= o->update_b() * d;
-    }
-    in_halves(add_prediction);
-  }
+  for (int32_t j = 1; j <= level; ++j) inverse_level(plan, j, x, detail, threads);
   return x;
+}
+
+void inverse_lifting_in_place(const LiftingPlan& plan, const std::vector<Vector3d>& base, std::vector<Vector3d>& x,
+                              int32_t first, int32_t last, bool threads) {
+  assert(x.size() == static_cast<size_t>(plan.vertex_count()));
+  last = std::min(last, plan.levels());
+  if (first <= 1) {
+    const size_t base_count = std::min(x.size(), static_cast<size_t>(plan.base_vertex_count()));
+    std::fill_n(x.begin(), base_count, Vector3d::Zero());
+    std::copy_n(base.begin(), std::min(base.size(), base_count), x.begin());
+    first = 1;
+  }
+  for (int32_t j = first; j <= last; ++j) inverse_level(plan, j, x, x, threads);
 }
 
 }  // namespace srcodec

@@ -72,6 +72,9 @@ class LiftingPlan {
   const Odd* odd_begin(int32_t level) const;
   const Odd* odd_end(int32_t level) const;
   const std::vector<Tap>& taps() const { return taps_; }
+  // True when every vertex is a base vertex or an odd one of levels 1 ..
+  // `level`: inverse lifting to `level` then works in place.
+  bool covers_every_vertex(int32_t level) const;
   // The prediction stencil of `o` as taps (a regular one spelled out, with
   // its eight terms in stencil order).
   std::vector<Tap> stencil(const Odd& o) const;
@@ -111,7 +114,21 @@ WaveletCoefficients forward_lifting(const LiftingPlan& plan, const std::vector<E
 // has base_vertex_count entries, `detail` vertex_count entries (missing
 // entries count as 0; details of levels > level are ignored). Pass `detail`
 // as an rvalue when it is not needed after: its array then holds the result.
+// `threads`: big levels run half of their steps on a second thread (the
+// result is the same).
 std::vector<Eigen::Vector3d> inverse_lifting(const LiftingPlan& plan, const std::vector<Eigen::Vector3d>& base,
-                                             std::vector<Eigen::Vector3d> detail, int32_t level);
+                                             std::vector<Eigen::Vector3d> detail, int32_t level, bool threads = true);
+
+// inverse_lifting's steps of levels first .. last (clamped to plan.levels())
+// on one array: `x` has one entry per hierarchy vertex, each odd vertex of
+// levels first .. last holding its detail, each vertex of a lower level its
+// position (the base positions, from `base`, when first <= 1; the slots of
+// finer levels are neither read nor written). Precondition (asserted):
+// plan.covers_every_vertex(L) for the finest level L to be reconstructed.
+// Levels 1 .. L in one call or in several give the same bits as
+// inverse_lifting. For a decoder that knows the coarser levels' details
+// before the finest level's. `threads`: as inverse_lifting's.
+void inverse_lifting_in_place(const LiftingPlan& plan, const std::vector<Eigen::Vector3d>& base,
+                              std::vector<Eigen::Vector3d>& x, int32_t first, int32_t last, bool threads = true);
 
 }  // namespace srcodec

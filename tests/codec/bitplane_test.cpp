@@ -546,14 +546,42 @@ TEST(Bitplane, GarbageDecodesWithoutCrash) {
 // or corrupted while later segments are still there (the pipelined decode
 // must then fall back: the coarser thread may already have decoded the next
 // plane), and garbage.
+// How often expect_same_decode saw the coarse levels handed out early with
+// their final values, and handed out but then decoded again (corrupt input).
+int coarse_done_final_count = 0, coarse_done_redone_count = 0;
+
 void expect_same_decode(const CoefficientForest& forest, int top, const std::vector<BitplaneSegmentView>& views,
                         int max_level, const std::string& what, int raw_planes = 0) {
   BitplaneDecodeStats seq_stats, pipe_stats;
-  auto seq = decode_bitplanes(forest, top, views, max_level, &seq_stats, BitplaneThreads::kSequential, raw_planes);
-  auto pipe = decode_bitplanes(forest, top, views, max_level, &pipe_stats, BitplaneThreads::kPipelined, raw_planes);
-  ASSERT_EQ(seq.ok(), pipe.ok()) << what;
-  if (!seq.ok()) return;
-  ASSERT_TRUE(seq.value() == pipe.value()) << what;
+  // The pipelined decode hands out the coarser levels' values while it
+  // decodes the last; the sequential one never does.
+  int seq_calls = 0, pipe_calls = 0;
+  std::vector<double> coarse;
+  const CoarseLevelsDone seq_done = [&](const BitplaneValueView&) { ++seq_calls; };
+  const CoarseLevelsDone pipe_done = [&](const BitplaneValueView& v) {
+    ++pipe_calls;
+    coarse.clear();
+    for (size_t i = 0; i < v.size(); ++i) coarse.push_back(v.value(i));
+  };
+  auto seq_values = decode_bitplane_values(forest, top, views, max_level, &seq_stats, BitplaneThreads::kSequential,
+                                           raw_planes, seq_done);
+  auto pipe_values = decode_bitplane_values(forest, top, views, max_level, &pipe_stats, BitplaneThreads::kPipelined,
+                                            raw_planes, pipe_done);
+  ASSERT_EQ(seq_values.ok(), pipe_values.ok()) << what;
+  if (!seq_values.ok()) return;
+  const std::vector<double> seq = seq_values->values(), pipe = pipe_values->values();
+  ASSERT_TRUE(seq == pipe) << what;
+  EXPECT_EQ(seq_calls, 0) << what;
+  EXPECT_FALSE(seq_stats.coarse_done_final) << what;
+  EXPECT_LE(pipe_calls, 1) << what;
+  if (pipe_stats.coarse_done_final) {
+    ++coarse_done_final_count;
+    ASSERT_EQ(pipe_calls, 1) << what;
+    ASSERT_LT(coarse.size(), pipe.size()) << what;
+    ASSERT_TRUE(std::equal(coarse.begin(), coarse.end(), pipe.begin())) << what;
+  } else if (pipe_calls == 1) {
+    ++coarse_done_redone_count;
+  }
   EXPECT_EQ(seq_stats.last_complete_plane, pipe_stats.last_complete_plane) << what;
   EXPECT_EQ(seq_stats.symbols, pipe_stats.symbols) << what;
   EXPECT_EQ(seq_stats.segments_decoded, pipe_stats.segments_decoded) << what;
@@ -633,6 +661,9 @@ TEST(Bitplane, PipelinedDecodeEqualsSequential) {
       for (int l = 1; l <= 4; ++l, ++k) views.push_back({p, l, bytes[k].data(), bytes[k].size()});
     expect_same_decode(s.forest, top, views, 255, "garbage, try " + std::to_string(t), t % 3);
   }
+  // Both ways occurred.
+  EXPECT_GT(coarse_done_final_count, 100);
+  EXPECT_GT(coarse_done_redone_count, 0);
 }
 
 // Zeroth-order entropy of q within each context class: what a coder that knew

@@ -351,6 +351,45 @@ TEST(LiftingLevels, IntermediateLevelIgnoresFinerDetails) {
   }
 }
 
+// The decoder's staged inverse: levels in several in-place calls, the finer
+// slots holding garbage until their level's call, give inverse_lifting's
+// bits; with and without the second thread.
+TEST(LiftingLevels, InPlaceStepsEqualTheWholeInverse) {
+  const TriangleMesh ico = test::icosphere(0, 1.0);
+  for (bool adaptive : {true, false}) {
+    TriangleHierarchy h = make_hierarchy(ico);
+    std::mt19937 rng(12);
+    if (adaptive) {
+      refine_uniform(h, 3);
+      refine_random(h, 6, 400, rng);
+    } else {
+      refine_uniform(h, 6);  // big enough for the second thread on the finest level
+    }
+    const LiftingPlan plan = make_plan(h);
+    ASSERT_TRUE(plan.covers_every_vertex(plan.levels()));
+    ASSERT_FALSE(plan.covers_every_vertex(plan.levels() - 1));
+    if (!adaptive) {
+      ASSERT_GE(plan.odd_end(plan.levels()) - plan.odd_begin(plan.levels()), 16384);
+    }
+    const Positions x = place(h, noisy_base(ico, 0.1, rng), 0.05, rng);
+    const WaveletCoefficients c = forward_lifting(plan, x);
+    const Positions whole = inverse_lifting(plan, c.base, c.detail, plan.levels());
+    for (bool threads : {false, true}) {
+      for (int32_t split = 1; split <= plan.levels(); ++split) {
+        Positions staged = c.detail;
+        for (int32_t v = 0; v < h.vertex_count(); ++v)
+          if (h.vertex_level(v) >= split) staged[v] = Vector3d(7, -3, 5);  // not read yet
+        inverse_lifting_in_place(plan, c.base, staged, 1, split - 1, threads);
+        for (int32_t v = 0; v < h.vertex_count(); ++v)
+          if (h.vertex_level(v) >= split) staged[v] = c.detail[v];
+        inverse_lifting_in_place(plan, c.base, staged, split, plan.levels(), threads);
+        EXPECT_TRUE(staged == whole) << (adaptive ? "adaptive" : "uniform") << ", split at " << split
+                                     << (threads ? ", threads" : "");
+      }
+    }
+  }
+}
+
 // --- 4. Frames ---------------------------------------------------------------
 
 TEST(LiftingFrames, SphereDetailsAreMostlyNormal) {
