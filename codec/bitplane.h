@@ -144,7 +144,6 @@ class BitplaneValues {
 
   size_t size() const { return magnitude_.size(); }
   BitplaneValueView view() const { return {magnitude_.data(), low_plane_.data(), flags_.data(), size()}; }
-  double value(size_t i) const { return view().value(i); }
   // Every value(i), in node order.
   std::vector<double> values() const;
 

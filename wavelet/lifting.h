@@ -123,10 +123,11 @@ std::vector<Eigen::Vector3d> inverse_lifting(const LiftingPlan& plan, const std:
 // on one array: `x` has one entry per hierarchy vertex, each odd vertex of
 // levels first .. last holding its detail, each vertex of a lower level its
 // position (the base positions, from `base`, when first <= 1; the slots of
-// finer levels are neither read nor written). Precondition (asserted):
-// plan.covers_every_vertex(L) for the finest level L to be reconstructed.
-// Levels 1 .. L in one call or in several give the same bits as
-// inverse_lifting. For a decoder that knows the coarser levels' details
+// finer levels are neither read nor written). Preconditions: x.size() ==
+// plan.vertex_count() (asserted), and plan.covers_every_vertex(L) for the
+// finest level L the caller reconstructs (its to check: inverse_lifting
+// works in a copy otherwise). Levels 1 .. L in one call or in several give
+// the same bits as inverse_lifting. For a decoder that knows the coarser levels' details
 // before the finest level's. `threads`: as inverse_lifting's.
 void inverse_lifting_in_place(const LiftingPlan& plan, const std::vector<Eigen::Vector3d>& base,
                               std::vector<Eigen::Vector3d>& x, int32_t first, int32_t last, bool threads = true);
