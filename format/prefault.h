@@ -13,18 +13,9 @@
 #include <thread>
 #include <vector>
 
+#include "format/memory_range.h"
+
 namespace srcodec {
-
-struct MemoryRange {
-  const void* data = nullptr;
-  size_t bytes = 0;
-};
-
-// The memory of `v` up to its capacity.
-template <typename T, typename A>
-MemoryRange capacity_of(const std::vector<T, A>& v) {
-  return {v.data(), v.capacity() * sizeof(T)};
-}
 
 // Maps the whole pages inside the range writable, if the system can; false
 // when it cannot (another system, an older kernel, nothing mapped there).

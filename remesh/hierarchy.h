@@ -14,7 +14,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "format/prefault.h"
+#include "format/memory_range.h"
 #include "format/status.h"
 #include "remesh/param.h"
 
