@@ -38,6 +38,10 @@ TEST(CodecCli, EncodeAtAByteBudgetThenDecodeEveryLevelAndPrefix) {
     EXPECT_EQ(json_number(d.out, "triangles"), level == 0 ? json_number(d.out, "triangles") : 4 * previous_triangles);
     previous_triangles = json_number(d.out, "triangles");
   }
+  // On one thread: the same file as the default decode's.
+  auto one = run_srcodec("decode --single-thread " + q(srm) + " -o " + q(dir.file("one.obj")));
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  EXPECT_EQ(read_file_bytes(dir.file("one.obj")).value(), read_file_bytes(dir.file("l2.obj")).value());
   // A prefix decodes; one that ends inside the header says so and writes nothing.
   auto prefix = run_srcodec("decode --json --bytes 1200 " + q(srm) + " -o " + q(dir.file("p.obj")));
   EXPECT_EQ(prefix.exit_code, 0) << prefix.err;

@@ -19,6 +19,7 @@ struct DecodeCliOptions {
   int level = -1;
   uint64_t bytes = 0;
   uint64_t max_vertices = uint64_t{1} << 22;
+  bool single_thread = false;
   bool json = false;
 };
 
@@ -34,6 +35,7 @@ Status run_decode(const DecodeCliOptions& o) {
   DecodeOptions options;
   options.level = o.level;
   options.max_vertices = o.max_vertices;
+  options.threads = !o.single_thread;
   StatusOr<DecodedSrm> decoded = decode_srm(file, options);
   if (!decoded.ok()) return decoded.status().with_context(o.input);
   SRCODEC_RETURN_IF_ERROR(write_mesh(decoded->mesh, o.output));
@@ -78,6 +80,8 @@ Command add_decode_command(CLI::App& app) {
   cmd->add_option("--bytes", o->bytes, "Decode from the first N bytes only")->check(CLI::PositiveNumber);
   cmd->add_option("--max-vertices", o->max_vertices, "Refuse files that decode to more vertices than this")
       ->capture_default_str();
+  cmd->add_flag("--single-thread", o->single_thread,
+                "Decode on one thread (the same mesh; for many decodes side by side)");
   cmd->add_flag("--json", o->json, "Print one JSON object");
   return {cmd, [o] { return run_decode(*o); }};
 }
