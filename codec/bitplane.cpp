@@ -54,7 +54,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cassert>
-#include <cmath>
 #include <condition_variable>
 #include <cstdint>
 #include <memory>

@@ -388,13 +388,14 @@ StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const DecodeOptions& option
   // (An early return before this joins the job in the future's destructor,
   // which runs before `hier` is destroyed.)
   if (!triangles_claimed.exchange(true)) triangles = hier.level_triangles(level);
-  if (!take_plan().ok()) return take_plan().status().with_context("wavelet plan");
+  const StatusOr<LiftingPlan>& lifting = take_plan();
+  if (!lifting.ok()) return lifting.status().with_context("wavelet plan");
   std::vector<Eigen::Vector3d> positions;
   if (staged) {
-    inverse_lifting_in_place(take_plan().value(), base_positions, detail, level, level, options.threads);
+    inverse_lifting_in_place(lifting.value(), base_positions, detail, level, level, options.threads);
     positions = std::move(detail);
   } else {
-    positions = inverse_lifting(take_plan().value(), base_positions, std::move(detail), level, options.threads);
+    positions = inverse_lifting(lifting.value(), base_positions, std::move(detail), level, options.threads);
   }
   // Every vertex of the replayed hierarchy (levels <= `level`, ids 0 ..
   // vertex_count - 1) is a corner of some triangle of the level mesh: the
