@@ -5,11 +5,11 @@
 #include <cmath>
 #include <future>
 #include <optional>
-#include <system_error>
 
 #include "codec/base_mesh_coder.h"
 #include "codec/bitplane.h"
 #include "codec/flags_coder.h"
+#include "format/in_halves.h"
 #include "format/prefault.h"
 #include "wavelet/lifting.h"
 
@@ -373,20 +373,9 @@ StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const DecodeOptions& option
   // half of it on the other core (this also spreads the page faults of
   // `detail`).
   const size_t first = staged ? coarse_vertices : 0, vertices = layout.vertex.size();
-  const size_t half = first + (vertices - first) / 2;
   const BitplaneValueView all = values->view();
-  std::future<void> other_half;
-  if (options.threads && vertices - first >= kParallelScaleVertices) {
-    try {
-      other_half = std::async(std::launch::async, scale, all, half, vertices);
-    } catch (const std::system_error&) {
-      // No thread: this one does it all.
-    }
-  }
-  scale(all, first, other_half.valid() ? half : vertices);
-  if (other_half.valid()) other_half.get();
-  // (An early return before this joins the job in the future's destructor,
-  // which runs before `hier` is destroyed.)
+  run_in_halves(first, vertices, options.threads && vertices - first >= kParallelScaleVertices,
+                [&](size_t begin, size_t end) { scale(all, begin, end); });
   if (!triangles_claimed.exchange(true)) triangles = hier.level_triangles(level);
   const StatusOr<LiftingPlan>& lifting = take_plan();
   if (!lifting.ok()) return lifting.status().with_context("wavelet plan");

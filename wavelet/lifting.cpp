@@ -13,11 +13,11 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <future>
 #include <string>
 
 #include <Eigen/Geometry>
 
+#include "format/in_halves.h"
 #include "wavelet/butterfly_stencil.h"
 
 namespace srcodec {
@@ -245,13 +245,8 @@ void inverse_level(const LiftingPlan& plan, int32_t j, std::vector<Vector3d>& x,
   };
   // Runs step over [begin, end), the second half on another thread when
   // the level is big.
-  const auto in_halves = [begin, end, threads](const auto& step) {
-    if (!threads || end - begin < kParallelOdds) return step(begin, end);
-    const LiftingPlan::Odd* middle = begin + (end - begin) / 2;
-    std::future<void> half = std::async(std::launch::async, step, middle, end);
-    step(begin, middle);
-    half.get();
-  };
+  const bool two_threads = threads && end - begin >= kParallelOdds;
+  const auto in_halves = [begin, end, two_threads](const auto& step) { run_in_halves(begin, end, two_threads, step); };
   in_halves(to_world);
   for (const auto* o = begin; o != end; ++o) {
     const Vector3d d = x[o->v];
