@@ -12,7 +12,7 @@ packages=(
   libopenmesh-dev libeigen3-dev libnanoflann-dev libzstd-dev
   libdraco-dev draco libcgal-dev libtbb-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  python3 python3-numpy python3-matplotlib
+  python3 python3-numpy python3-scipy python3-matplotlib
   clang libclang-rt-14-dev
 )
 missing=()
