@@ -22,19 +22,7 @@ import sys
 import numpy as np
 from scipy.spatial import cKDTree
 
-
-def read_obj(path):
-    """Positions and triangles (polygons fanned) of an OBJ file."""
-    positions, triangles = [], []
-    with open(path) as f:
-        for line in f:
-            if line.startswith("v "):
-                positions.append([float(x) for x in line.split()[1:4]])
-            elif line.startswith("f "):
-                ids = [int(t.split("/")[0]) for t in line.split()[1:]]
-                ids = [i - 1 if i > 0 else len(positions) + i for i in ids]
-                triangles += [[ids[0], ids[k], ids[k + 1]] for k in range(1, len(ids) - 1)]
-    return np.array(positions, dtype=float), np.array(triangles, dtype=np.int64)
+from mesh_arrays import load_obj, nearest_triangle
 
 
 def face_normals(p, t):
@@ -55,38 +43,11 @@ def unit_vertex_normals(p, t):
     return unit_rows(n)
 
 
-def closest_on_triangles(x, a, b, c):
-    """Row-wise closest point to x[i] on triangle (a[i], b[i], c[i])."""
-    ab, ac = b - a, c - a
-    d1, d2 = (ab * (x - a)).sum(1), (ac * (x - a)).sum(1)
-    d3, d4 = (ab * (x - b)).sum(1), (ac * (x - b)).sum(1)
-    d5, d6 = (ab * (x - c)).sum(1), (ac * (x - c)).sum(1)
-    va, vb, vc = d3 * d6 - d5 * d4, d5 * d2 - d1 * d6, d1 * d4 - d3 * d2
-    den = va + vb + vc
-    den = np.where(den == 0, 1e-300, den)
-    out = a + ab * (vb / den)[:, None] + ac * (vc / den)[:, None]
-
-    def ratio(num, den):
-        return num / np.where(den == 0, 1e-300, den)
-
-    edges = [
-        ((vc <= 0) & (d1 >= 0) & (d3 <= 0), a, ab, ratio(d1, d1 - d3)),
-        ((vb <= 0) & (d2 >= 0) & (d6 <= 0), a, ac, ratio(d2, d2 - d6)),
-        ((va <= 0) & (d4 - d3 >= 0) & (d5 - d6 >= 0), b, c - b, ratio(d4 - d3, (d4 - d3) + (d5 - d6))),
-    ]
-    for mask, start, direction, s in edges:
-        out[mask] = (start + direction * s[:, None])[mask]
-    out[(d1 <= 0) & (d2 <= 0)] = a[(d1 <= 0) & (d2 <= 0)]
-    out[(d3 >= 0) & (d4 <= d3)] = b[(d3 >= 0) & (d4 <= d3)]
-    out[(d6 >= 0) & (d5 <= d6)] = c[(d6 >= 0) & (d5 <= d6)]
-    return out
-
-
 def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__)
-    pi, ti = read_obj(sys.argv[1])
-    po, to = read_obj(sys.argv[2])
+    pi, ti = load_obj(sys.argv[1])
+    po, to = load_obj(sys.argv[2])
     normals = unit_vertex_normals(pi, ti)
     tree = cKDTree(pi)
     dist, nearest = tree.query(po)
@@ -103,28 +64,9 @@ def main():
     folded = facing <= 1e-9
     all_on = on_input[to].all(1)
 
-    # Against the input triangle nearest the centroid (among those around
-    # the 4 input vertices nearest it).
-    centroid = po[to].mean(1)
-    degree = np.bincount(ti.ravel(), minlength=len(pi))
-    ring = -np.ones((len(pi), degree.max()), dtype=np.int64)
-    order = np.argsort(ti.ravel(), kind="stable")
-    owner = ti.ravel()[order]
-    first = np.concatenate([[0], np.cumsum(degree)[:-1]])
-    ring[owner, np.arange(len(owner)) - first[owner]] = order // 3
-    _, near = tree.query(centroid, k=4)
-    best = np.full(len(to), np.inf)
-    best_triangle = np.zeros(len(to), dtype=np.int64)
-    for k in range(near.shape[1]):
-        for j in range(ring.shape[1]):
-            t = ring[near[:, k], j]
-            valid = t >= 0
-            t = np.where(valid, t, 0)
-            q = closest_on_triangles(centroid, pi[ti[t, 0]], pi[ti[t, 1]], pi[ti[t, 2]])
-            d = np.where(valid, np.linalg.norm(q - centroid, axis=1), np.inf)
-            closer = d < best
-            best[closer], best_triangle[closer] = d[closer], t[closer]
-    against = (unit_rows(fn) * unit_rows(face_normals(pi, ti))[best_triangle]).sum(1) <= 0
+    # Against the input triangle nearest the centroid.
+    _, nearest_input = nearest_triangle(po[to].mean(1), pi, ti)
+    against = (unit_rows(fn) * unit_rows(face_normals(pi, ti))[nearest_input]).sum(1) <= 0
 
     print(f"{sys.argv[2]}: {len(to)} triangles, {int((~on_input).sum())} of {len(po)} vertices off the input")
     print(f"folded by corner normals: {int(folded.sum())} "
