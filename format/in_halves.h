@@ -9,8 +9,9 @@ namespace srcodec {
 // step(begin, end) when `two_threads` is false; else step(begin, middle) on
 // this thread and step(middle, end) on another, joined before returning. If
 // no thread can be made, this thread does the whole range. Index is an
-// integer or a pointer; the halves do not depend on the outcome, so the
-// result is the same either way when the step's calls are independent.
+// integer or a pointer. Either way the same elements are stepped over, so
+// the result does not depend on the threads when the two halves do not
+// touch each other's data.
 template <class Index, class Step>
 void run_in_halves(Index begin, Index end, bool two_threads, const Step& step) {
   if (!two_threads) return step(begin, end);
