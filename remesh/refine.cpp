@@ -560,6 +560,7 @@ class Refiner {
       if (members.offsets[s + 1] - members.offsets[s] == 1) ++lr.empty_cells;
     untangle(level, lr);
     for (const auto& tri : triangles_) lr.folded_triangles += folded(tri, -1, -1);
+    lr.folded_by_nearest_input = folded_by_nearest_input();
     lr.pleats = pleats().size();
     for (const auto& level_tris : coarse_triangles_)
       for (const auto& tri : level_tris) lr.coarse_folded_triangles += folded(tri, -1, -1);
@@ -951,13 +952,40 @@ class Refiner {
   double facing(const std::array<int32_t, 3>& tri, int32_t moved, int32_t to) const {
     std::array<int32_t, 3> at{};
     for (int c = 0; c < 3; ++c) at[c] = tri[c] == moved ? to : anchor_[tri[c]];
-    const Eigen::Vector3d &p0 = points_[at[0]], &p1 = points_[at[1]], &p2 = points_[at[2]];
+    return facing_of(points_[at[0]], points_[at[1]], points_[at[2]],
+                     normals_[at[0]] + normals_[at[1]] + normals_[at[2]]);
+  }
+  static double facing_of(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2,
+                          const Eigen::Vector3d& reference) {
     const Eigen::Vector3d n = (p1 - p0).cross(p2 - p0);
-    Eigen::Vector3d reference = normals_[at[0]] + normals_[at[1]] + normals_[at[2]];
     const double r = reference.norm();
     const double scale = (p1 - p0).squaredNorm() + (p2 - p1).squaredNorm() + (p0 - p2).squaredNorm();
     if (!(r > 0.0) || !(scale > 0.0)) return 0.0;
     return n.dot(reference) / (r * scale);
+  }
+
+  // RefineLevelReport::folded_by_nearest_input for the current level's mesh.
+  size_t folded_by_nearest_input() const {
+    const int32_t inputs = static_cast<int32_t>(input_.positions.size());
+    std::vector<Eigen::Vector3d> corner_normal(anchor_.size(), Eigen::Vector3d::Zero());
+    for (size_t s = 0; s < anchor_.size(); ++s) {
+      int32_t a = anchor_[s];
+      if (a < 0) continue;
+      if (a >= inputs) {
+        uint32_t nearest = 0;
+        double d2 = 0.0;
+        input_tree_.knnSearch(points_[a].data(), 1, &nearest, &d2);
+        a = static_cast<int32_t>(nearest);
+      }
+      corner_normal[s] = normals_[a];
+    }
+    size_t folded = 0;
+    for (const auto& t : triangles_) {
+      const double f = facing_of(points_[anchor_[t[0]]], points_[anchor_[t[1]]], points_[anchor_[t[2]]],
+                                 corner_normal[t[0]] + corner_normal[t[1]] + corner_normal[t[2]]);
+      folded += !(f > 1e-9);
+    }
+    return folded;
   }
 
   // Folded: facing the wrong way, or so thin it has no usable area.

@@ -53,6 +53,12 @@ struct RefineLevelReport {
   // remesh.
   size_t folded_triangles = 0;
   size_t coarse_folded_triangles = 0;  // the same, summed over the coarser levels' meshes
+  // folded_triangles with every corner judged by the input vertex nearest
+  // it. The remesher's own test judges a corner off the input (a midpoint,
+  // a surface point, an untangled site) by the normal it was given when it
+  // was placed, and its repairs aim at that test; this count does not share
+  // it. Equal to folded_triangles when every corner is an input vertex.
+  size_t folded_by_nearest_input = 0;
   // Edges of the level's mesh whose two triangles meet at more than 150
   // degrees (folded onto each other, whichever way they face).
   size_t pleats = 0;

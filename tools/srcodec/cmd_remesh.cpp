@@ -73,6 +73,7 @@ Status run_remesh(const RemeshCliOptions& o) {
             .field("refused_folds", lr.refused_folds)
             .field("folded_triangles", lr.folded_triangles)
             .field("coarse_folded_triangles", lr.coarse_folded_triangles)
+            .field("folded_by_nearest_input", lr.folded_by_nearest_input)
             .field("pleats", lr.pleats)
             .field("untangled", lr.untangled)
             .field("midpoint_vertices", lr.midpoint_vertices)
