@@ -47,24 +47,37 @@ TriangleMesh oversampled(const TriangleMesh& input, const std::vector<int>& step
   return out;
 }
 
-// Output triangles that face against the surface the remesher ran on
-// (`input`, oriented and oversampled as it was): their normal and the input
-// normals at their three corners, which must be input vertices, point away
-// from each other.
-size_t folded_triangles(const TriangleMesh& input, const TriangleMesh& out) {
+// The surface the remesher ran on (`mesh`, oriented and oversampled as it
+// was), with its vertices indexed by exact position: an output corner on an
+// input vertex has that vertex's coordinates. Built once for the counts
+// below.
+struct InputIndex {
+  InputIndex(const TriangleMesh& m) : mesh(m), normals(vertex_normals(m)) {  // NOLINT: converts in the tests' calls
+    for (size_t v = 0; v < m.positions.size(); ++v)
+      index[{m.positions[v].x(), m.positions[v].y(), m.positions[v].z()}] = static_cast<int32_t>(v);
+  }
+  // The input vertex at exactly p, or -1.
+  int32_t at(const Eigen::Vector3d& p) const {
+    const auto it = index.find({p.x(), p.y(), p.z()});
+    return it == index.end() ? -1 : it->second;
+  }
+  const TriangleMesh& mesh;
   std::map<std::array<double, 3>, int32_t> index;
-  for (size_t v = 0; v < input.positions.size(); ++v)
-    index[{input.positions[v].x(), input.positions[v].y(), input.positions[v].z()}] = static_cast<int32_t>(v);
-  const std::vector<Eigen::Vector3d> normals = vertex_normals(input);
+  std::vector<Eigen::Vector3d> normals;  // area-weighted, not unit
+};
+
+// Output triangles that face against the input surface: their normal and
+// the input normals at their three corners, which must be input vertices,
+// point away from each other.
+size_t folded_triangles(const InputIndex& input, const TriangleMesh& out) {
   size_t folded = 0;
   std::set<int32_t> off_input;
   for (const auto& t : out.triangles) {
     Eigen::Vector3d n = Eigen::Vector3d::Zero();
     for (int32_t v : t) {
-      const Eigen::Vector3d& p = out.positions[v];
-      const auto it = index.find({p.x(), p.y(), p.z()});
-      if (it != index.end()) {
-        n += normals[it->second].normalized();
+      const int32_t i = input.at(out.positions[v]);
+      if (i >= 0) {
+        n += input.normals[i].normalized();
       } else {
         off_input.insert(v);  // placed off the input's vertices (see the level reports)
       }
@@ -86,22 +99,17 @@ size_t folded_triangles(const TriangleMesh& input, const TriangleMesh& out) {
 // same vertex when it is one), and a triangle is folded when its facing
 // against their sum, over its squared edge lengths, is not above 1e-9.
 // Corners off the input are few: they are found by a linear scan.
-size_t folded_by_nearest_input(const TriangleMesh& input, const TriangleMesh& out) {
-  std::map<std::array<double, 3>, int32_t> index;
-  for (size_t v = 0; v < input.positions.size(); ++v)
-    index[{input.positions[v].x(), input.positions[v].y(), input.positions[v].z()}] = static_cast<int32_t>(v);
-  std::vector<Eigen::Vector3d> normals = vertex_normals(input);
-  for (Eigen::Vector3d& n : normals)
-    if (n.norm() > 0.0) n.normalize();
+size_t folded_by_nearest_input(const InputIndex& input, const TriangleMesh& out) {
+  const std::vector<Eigen::Vector3d>& in = input.mesh.positions;
   std::vector<Eigen::Vector3d> corner(out.positions.size());
   for (size_t v = 0; v < out.positions.size(); ++v) {
     const Eigen::Vector3d& p = out.positions[v];
-    const auto it = index.find({p.x(), p.y(), p.z()});
-    size_t nearest = it != index.end() ? static_cast<size_t>(it->second) : 0;
-    if (it == index.end())
-      for (size_t i = 1; i < input.positions.size(); ++i)
-        if ((input.positions[i] - p).squaredNorm() < (input.positions[nearest] - p).squaredNorm()) nearest = i;
-    corner[v] = normals[nearest];
+    const int32_t at = input.at(p);
+    size_t nearest = at >= 0 ? static_cast<size_t>(at) : 0;
+    if (at < 0)
+      for (size_t i = 1; i < in.size(); ++i)
+        if ((in[i] - p).squaredNorm() < (in[nearest] - p).squaredNorm()) nearest = i;
+    corner[v] = input.normals[nearest].normalized();
   }
   size_t folded = 0;
   for (const auto& t : out.triangles) {
@@ -381,7 +389,8 @@ TEST_P(CorpusTopology, KeepsTopologyWithoutFolds) {
   // triangles, on its thin low-poly pieces); the bound catches a regression
   // to the hundreds and thousands seen before the untangling step.
   const TriangleMesh finest = srm->level_mesh(2);
-  const TriangleMesh ran_on = oversampled(input.value(), report.component_oversample_steps);
+  const TriangleMesh oversampled_input = oversampled(input.value(), report.component_oversample_steps);
+  const InputIndex ran_on(oversampled_input);
   EXPECT_LE(folded_triangles(ran_on, finest), finest.triangles.size() / 100);
   // The report's recount, which judges corners off the input by the input
   // vertex nearest them, is what this test finds on its own.
