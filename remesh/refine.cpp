@@ -169,9 +169,14 @@ class Refiner {
       lr.vertices = h_.level_vertex_count(level);
       lr.triangles = triangles_.size();
       lr.seconds = seconds_since(start);
+      std::string tangles;  // the goal is none; say so when some are left
+      if (lr.folded_triangles + lr.coarse_folded_triangles > 0)
+        tangles += ", " + std::to_string(lr.folded_triangles) + " folded (" +
+                   std::to_string(lr.coarse_folded_triangles) + " on coarser levels)";
+      if (lr.pleats > 0) tangles += ", " + std::to_string(lr.pleats) + " pleats";
       progress("level " + std::to_string(level) + ": " + std::to_string(lr.vertices) + " vertices, " +
                std::to_string(lr.triangles) + " triangles, " + std::to_string(lr.lloyd_iterations) +
-               " Lloyd steps, " + std::to_string(lr.seconds) + " s");
+               " Lloyd steps" + tangles + ", " + std::to_string(lr.seconds) + " s");
       if (report) report->push_back(lr);
     }
     return ok_status();

@@ -114,6 +114,33 @@ TEST(Cli, RemeshSampleReportsEveryLevel) {
   EXPECT_LT(psnr, 120.0);
 }
 
+// Folded triangles are a defect the user should see without --json: the text
+// report names them with the JSON's counts, and a clean remesh says nothing.
+// Linear oversampling of the sample leaves 1 folded triangle and 3 pleats at
+// 3 levels (measured 2026-11-29).
+TEST(Cli, RemeshTextReportNamesLeftoverFolds) {
+  test::ScratchDir dir;
+  const std::string in = q(test::source_path("data/bunny_npm.obj"));
+  const std::string args = " --quiet --levels 3 --scheme linear --samples 20000 " + in + " -o ";
+  auto json = run_srcodec("remesh --json" + args + q(dir.file("a.obj")));
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  const std::string last = json.out.substr(json.out.rfind("\"level\": 3"));
+  const auto folded = static_cast<size_t>(json_number(last, "folded_triangles"));
+  const auto coarse = static_cast<size_t>(json_number(last, "coarse_folded_triangles"));
+  const auto pleats = static_cast<size_t>(json_number(last, "pleats"));
+  ASSERT_GT(folded + coarse + pleats, 0u) << "this setting no longer folds: pick another for the test";
+  auto text = run_srcodec("remesh" + args + q(dir.file("b.obj")));
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  const std::string line = "folds: " + std::to_string(folded) + " triangle(s) of level 3 and " +
+                           std::to_string(coarse) + " of coarser levels face against the input; " +
+                           std::to_string(pleats) + " edge(s) pleat";
+  EXPECT_NE(text.out.find(line), std::string::npos) << text.out;
+
+  auto clean = run_srcodec("remesh --quiet --levels 2 --samples 20000 " + in + " -o " + q(dir.file("c.obj")));
+  ASSERT_EQ(clean.exit_code, 0) << clean.err;
+  EXPECT_EQ(clean.out.find("folds:"), std::string::npos) << clean.out;
+}
+
 TEST(Cli, SubdivideLinearSplitsEveryTriangleInFour) {
   test::ScratchDir dir;
   const std::string in = q(test::source_path("data/bunny_npm.obj")), out = dir.file("lin.obj");

@@ -109,6 +109,13 @@ Status run_remesh(const RemeshCliOptions& o) {
         .array("levels", level_json);
     std::cout << j.str() << "\n";
   } else {
+    // The goal is none; where some are left, the user should know (the JSON
+    // has them per level).
+    const RefineLevelReport* last = report.levels.empty() ? nullptr : &report.levels.back();
+    if (last && last->folded_triangles + last->coarse_folded_triangles + last->pleats > 0)
+      std::printf("folds: %zu triangle(s) of level %d and %zu of coarser levels face against the input; %zu edge(s) "
+                  "pleat (their triangles meet at more than 150 degrees)\n",
+                  last->folded_triangles, last->level, last->coarse_folded_triangles, last->pleats);
     std::printf("wrote %s (level %d) in %.2f s\n", o.output.c_str(), srm.levels, seconds);
   }
   return ok_status();
