@@ -13,9 +13,15 @@ or three split neighbours is split too, one with one split neighbour becomes two
 green triangles). The error is one-sided (input to remesh), not the symmetric
 PSNR of `srcodec compare`.
 
-usage: /usr/bin/python3 tools/bench/adaptive_bound.py INPUT.obj COARSER.obj FINEST.obj
+Also with a lighter closure than the remesher's, for comparison: a triangle with
+two split neighbours becomes three triangles instead of being split ("blue").
+With a fourth mesh, the level below COARSER, also the best choice over two
+adaptive levels without closure: each triangle of that level stays, or is split
+and each of its four children stays or is split (children found by centroid).
+
+usage: /usr/bin/python3 tools/bench/adaptive_bound.py INPUT.obj COARSER.obj FINEST.obj [BELOW.obj]
   e.g. srcodec remesh igea.ply -o /tmp/i.obj --levels 5 --uniform --write-levels /tmp/i
-       tools/bench/adaptive_bound.py ../shared/data/meshes/igea_tri.obj /tmp/i_l4.obj /tmp/i_l5.obj
+       tools/bench/adaptive_bound.py ../shared/data/meshes/igea_tri.obj /tmp/i_l4.obj /tmp/i_l5.obj /tmp/i_l3.obj
 """
 import sys
 from collections import defaultdict
@@ -41,7 +47,7 @@ def neighbours(triangles):
 
 
 def main():
-    if len(sys.argv) != 4:
+    if len(sys.argv) not in (4, 5):
         sys.exit(__doc__)
     inputs, _ = load_obj(sys.argv[1])
     coarse_v, coarse_t = load_obj(sys.argv[2])
@@ -65,33 +71,65 @@ def main():
 
     around = neighbours(coarse_t)
 
-    def closed(selected):
+    def closed(selected, red_at=2):
         selected = selected.copy()
         while True:
             split_around = np.where(around >= 0, selected[np.maximum(around, 0)], False).sum(1)
-            more = ~selected & (split_around >= 2)
+            more = ~selected & (split_around >= red_at)
             if not more.any():
                 break
             selected |= more
         triangles = 4 * selected.sum() + ((~selected) * (1 + split_around)).sum()
         return triangles, e_coarse[~selected].sum() + e_fine[selected].sum()
 
-    for name, score in (("gain", gain), ("error mass", e_coarse)):
+    for name, score, red_at in (("gain", gain, 2), ("error mass", e_coarse, 2), ("gain", gain, 3)):
         order = np.argsort(-score)
         lo, hi = 0, n
         while lo < hi:  # the fewest splits, in this order, whose closure meets the target
             mid = (lo + hi) // 2
             selected = np.zeros(n, dtype=bool)
             selected[order[:mid]] = True
-            if closed(selected)[1] <= target:
+            if closed(selected, red_at)[1] <= target:
                 hi = mid
             else:
                 lo = mid + 1
         selected = np.zeros(n, dtype=bool)
         selected[order[:lo]] = True
-        triangles, _ = closed(selected)
-        print(f"order by {name}, with closure: {lo} selected -> {100 * triangles / uniform:.1f}% of uniform's "
+        triangles, _ = closed(selected, red_at)
+        closure = "with closure" if red_at == 2 else "with the lighter (blue) closure"
+        print(f"order by {name}, {closure}: {lo} selected -> {100 * triangles / uniform:.1f}% of uniform's "
               f"triangles")
+
+    if len(sys.argv) == 5:
+        two_level_bound(inputs, load_obj(sys.argv[4]), (coarse_v, coarse_t), (fine_v, fine_t), target)
+
+
+def two_level_bound(inputs, below, coarser, finest, target):
+    """The fewest triangles over two adaptive levels, no closure: for a Lagrange multiplier lam, each triangle
+    of BELOW takes the cheaper of staying (1 + lam * error) and being split, its children each the cheaper of
+    staying and being split; lam grows until the error meets the target."""
+    def parent(child, mesh):
+        return nearest_triangle(child[0][child[1]].mean(1), mesh[0], mesh[1])[1]
+    up_fine, up_coarse = parent(finest, coarser), parent(coarser, below)
+    distance = [nearest_triangle(inputs, m[0], m[1])[0] for m in (below, coarser, finest)]
+    owner_fine = nearest_triangle(inputs, finest[0], finest[1])[1]
+    owner = up_fine[owner_fine]  # each input vertex counted under the same ancestors at every level
+    n_below, n_coarse = len(below[1]), len(coarser[1])
+    e_below = np.bincount(up_coarse[owner], weights=distance[0], minlength=n_below)
+    e_coarse = np.bincount(owner, weights=distance[1], minlength=n_coarse)
+    e_fine = np.bincount(owner, weights=distance[2], minlength=n_coarse)
+    for lam in np.logspace(0, 16, 800) / max(distance[2].mean(), 1e-300) / len(inputs):
+        split_child = 4 + lam * e_fine < 1 + lam * e_coarse
+        child_cost = np.where(split_child, 4 + lam * e_fine, 1 + lam * e_coarse)
+        split = np.bincount(up_coarse, weights=child_cost, minlength=n_below) < 1 + lam * e_below
+        child_triangles = np.bincount(up_coarse, weights=np.where(split_child, 4, 1), minlength=n_below)
+        child_error = np.bincount(up_coarse, weights=np.where(split_child, e_fine, e_coarse), minlength=n_below)
+        if np.where(split, child_error, e_below).sum() <= target:
+            triangles = np.where(split, child_triangles, 1).sum()
+            print(f"two adaptive levels, no closure: {100 * triangles / len(finest[1]):.1f}% of uniform's triangles "
+                  f"({100 * split.mean():.1f}% of the level below split)")
+            return
+    print("two adaptive levels: the target was not met")
 
 
 if __name__ == "__main__":
