@@ -53,7 +53,7 @@ def main():
     coarse_v, coarse_t = load_obj(sys.argv[2])
     fine_v, fine_t = load_obj(sys.argv[3])
     d_coarse, owner = nearest_triangle(inputs, coarse_v, coarse_t)
-    d_fine, _ = nearest_triangle(inputs, fine_v, fine_t)
+    d_fine, owner_fine = nearest_triangle(inputs, fine_v, fine_t)
     n = len(coarse_t)
     e_coarse = np.bincount(owner, weights=d_coarse, minlength=n)
     e_fine = np.bincount(owner, weights=d_fine, minlength=n)
@@ -101,24 +101,25 @@ def main():
               f"triangles")
 
     if len(sys.argv) == 5:
-        two_level_bound(inputs, load_obj(sys.argv[4]), (coarse_v, coarse_t), (fine_v, fine_t), target)
+        below = load_obj(sys.argv[4])
+        two_level_bound(inputs, below, (coarse_v, coarse_t), (fine_v, fine_t), nearest_triangle(inputs, *below)[0],
+                        d_coarse, d_fine, owner_fine, target)
 
 
-def two_level_bound(inputs, below, coarser, finest, target):
+def two_level_bound(inputs, below, coarser, finest, d_below, d_coarse, d_fine, owner_fine, target):
     """The fewest triangles over two adaptive levels, no closure: for a Lagrange multiplier lam, each triangle
     of BELOW takes the cheaper of staying (1 + lam * error) and being split, its children each the cheaper of
-    staying and being split; lam grows until the error meets the target."""
+    staying and being split; lam grows until the error meets the target. d_*: each input vertex's squared
+    distance to that level; owner_fine: its nearest triangle of FINEST."""
     def parent(child, mesh):
         return nearest_triangle(child[0][child[1]].mean(1), mesh[0], mesh[1])[1]
     up_fine, up_coarse = parent(finest, coarser), parent(coarser, below)
-    distance = [nearest_triangle(inputs, m[0], m[1])[0] for m in (below, coarser, finest)]
-    owner_fine = nearest_triangle(inputs, finest[0], finest[1])[1]
     owner = up_fine[owner_fine]  # each input vertex counted under the same ancestors at every level
     n_below, n_coarse = len(below[1]), len(coarser[1])
-    e_below = np.bincount(up_coarse[owner], weights=distance[0], minlength=n_below)
-    e_coarse = np.bincount(owner, weights=distance[1], minlength=n_coarse)
-    e_fine = np.bincount(owner, weights=distance[2], minlength=n_coarse)
-    for lam in np.logspace(0, 16, 800) / max(distance[2].mean(), 1e-300) / len(inputs):
+    e_below = np.bincount(up_coarse[owner], weights=d_below, minlength=n_below)
+    e_coarse = np.bincount(owner, weights=d_coarse, minlength=n_coarse)
+    e_fine = np.bincount(owner, weights=d_fine, minlength=n_coarse)
+    for lam in np.logspace(0, 16, 800) / max(d_fine.mean(), 1e-300) / len(inputs):
         split_child = 4 + lam * e_fine < 1 + lam * e_coarse
         child_cost = np.where(split_child, 4 + lam * e_fine, 1 + lam * e_coarse)
         split = np.bincount(up_coarse, weights=child_cost, minlength=n_below) < 1 + lam * e_below
