@@ -78,6 +78,9 @@ struct RefineLevelReport {
   // Sites of this level put back at their parent edges' midpoints, off the
   // input, where nothing else undid the folds around them.
   size_t midpoint_resets = 0;
+  // Sites moved onto the input by the last resort, a patch redrawn in a
+  // planar map of the input under it (reparam_patch in refine.cpp).
+  size_t reparameterized = 0;
   double seconds = 0.0;
 };
 

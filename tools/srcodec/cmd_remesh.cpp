@@ -81,6 +81,7 @@ Status run_remesh(const RemeshCliOptions& o) {
             .field("off_input_moves", lr.off_input_moves)
             .field("smoothed", lr.smoothed)
             .field("midpoint_resets", lr.midpoint_resets)
+            .field("reparameterized", lr.reparameterized)
             .field("empty_cells", lr.empty_cells);
       }
       level_json.push_back(j);
