@@ -593,13 +593,11 @@ class Refiner {
   // (4 levels, defaults: ogre 143 + 38 folded -> 103 + 28, recount 1355 ->
   // 1336; beast 147 + 30 -> 140 + 29, 625 -> 624; the bunny's recount 3 ->
   // 2 and pleats 2 -> 0; the other corpus meshes unchanged). Where folds
-  // are still left, the patches around them are redrawn in a map of the
-  // input (reparam_patch), then the rounds run again. Over 24 runs (the
-  // corpus at 4 levels, the smooth scans at 5, and other base sizes) that
-  // left nothing worse and took folds 816 + 230 -> 727 + 200, the recount
-  // 4867 -> 4765: armadillo 1 -> 0 at 4 levels and 25 + 6 -> 4 + 4 at 5
-  // (71.38 -> 72.20 dB), nefertiti 3 + 1 -> 2 + 0 at 5, ogre 103 + 28 ->
-  // 74 + 20 (71.33 -> 71.57 dB).
+  // are still left on the last level, the patches around them are redrawn
+  // in a map of the input (reparam_patch), then the rounds run again. On
+  // the last level only: on a coarser one it moved sites that the levels
+  // above then refined from, and nefertiti's adaptive 5-level runs lost
+  // 0.5-1.2 dB that way (uniform 5 levels gained 0.4).
   void untangle(int32_t level, RefineLevelReport& lr) {
     repair_rounds(lr);
     if (level == 0 || folded_triangles().empty()) return;
@@ -609,10 +607,10 @@ class Refiner {
           }))
         return;
     repair_rounds(lr);
-    if (folded_triangles().empty()) return;
+    if (level != options_.levels || folded_triangles().empty()) return;
     for (int rings : {0, 1, 2, 4, 8, 16})
       if (!for_each_tangle_patch(
-              rings, [&](const std::vector<int32_t>& patch) { lr.reparameterized += reparam_patch(patch); }, false))
+              rings, [&](const std::vector<int32_t>& patch) { lr.reparameterized += reparam_patch(patch, level); }, false))
         return;
     repair_rounds(lr);
   }
@@ -877,8 +875,10 @@ class Refiner {
   // patch (RMS) than 1.1 times what it was: without that bound a patch on
   // beast's thin flaps untangled its count at the price of its shape (74.62
   // -> 51.54 dB). Returns the sites moved; 0 when the patch or the input
-  // under it is not a disk.
-  size_t reparam_patch(const std::vector<int32_t>& patch) {
+  // under it is not a disk, or when the patch holds a triangle not split on
+  // this level (a coarser leaf or the closure's: in adaptive runs, redrawn
+  // with the rest, they cost armadillo 6.5 dB at --threshold 16).
+  size_t reparam_patch(const std::vector<int32_t>& patch, int32_t level) {
     constexpr double kMaxRmsGrowth = 1.1;
     // The patch's interior sites and the triangles around them: a disk, on
     // local ids (sites, sorted), whose rim stays put.
@@ -899,6 +899,9 @@ class Refiner {
     double reach = 0.0;  // the patch's longest edge
     for (int32_t t : tri_ids) {
       const auto& tri = triangles_[t];
+      const int new_corners = (h_.vertex_level(tri[0]) == level) + (h_.vertex_level(tri[1]) == level) +
+                              (h_.vertex_level(tri[2]) == level);
+      if (new_corners < 2) return 0;  // a leaf of a coarser level, or the closure's
       patch_tris.push_back({local(tri[0]), local(tri[1]), local(tri[2])});
       for (int c = 0; c < 3; ++c)
         reach = std::max(reach, (points_[anchor_[tri[c]]] - points_[anchor_[tri[(c + 1) % 3]]]).norm());
