@@ -143,9 +143,7 @@ class Refiner {
         base_vertex_faces_(vertex_triangles(base.mesh.positions.size(), base.mesh.triangles)),
         site_of_(input.positions.size(), -1),
         input_on_boundary_(boundary_vertices(input.positions.size(), input.triangles)),
-        input_around_(vertex_triangles(input.positions.size(), input.triangles)),
-        input_neighbors_(vertex_neighbors(input.positions.size(), input.triangles)),
-        region_id_(input.positions.size(), -1) {
+        input_around_(vertex_triangles(input.positions.size(), input.triangles)) {
     tree_.buildIndex();
     input_tree_.buildIndex();
     build_face_points();
@@ -1001,6 +999,10 @@ class Refiner {
   // disk (the boundary on the circle by arc length, the inside by convex
   // combinations); no vertices when they do not form a disk.
   InputDisk input_disk(const std::vector<int32_t>& sites, double reach) {
+    if (region_id_.empty()) {  // built on first use: most runs leave no fold for this repair
+      input_neighbors_ = vertex_neighbors(input_.positions.size(), input_.triangles);
+      region_id_.assign(input_.positions.size(), -1);
+    }
     InputDisk disk;
     std::vector<double> dist;
     std::vector<std::pair<double, int32_t>> heap;
@@ -1445,8 +1447,10 @@ class Refiner {
   std::vector<char> site_on_boundary_;   // per hierarchy vertex, in the current level's mesh
   std::vector<char> input_on_boundary_;  // per input vertex (points_)
   Adjacency input_around_;               // per input vertex of the input: its triangles
-  Adjacency input_neighbors_;            // per input vertex of the input: its neighbours
-  std::vector<int32_t> region_id_;       // reparam_patch's scratch: an input vertex's place in its region, or -1
+  // reparam_patch's, built on its first use: per input vertex of the input,
+  // its neighbours, and its place in the current region (-1: none).
+  Adjacency input_neighbors_;
+  std::vector<int32_t> region_id_;
 };
 
 }  // namespace
