@@ -1,27 +1,15 @@
 #include "remesh/disk_map.h"
 
-#include <Eigen/Sparse>
 #include <Eigen/Dense>
+#include <Eigen/Sparse>
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <utility>
+#include <tuple>
+
+#include "remesh/adjacency.h"
 
 namespace srcodec {
-namespace {
-
-// Each undirected edge once, as (low, high), from the triangles.
-std::vector<std::pair<int32_t, int32_t>> unique_edges(const std::vector<std::array<int32_t, 3>>& triangles) {
-  std::vector<std::pair<int32_t, int32_t>> edges;
-  edges.reserve(3 * triangles.size());
-  for (const auto& t : triangles)
-    for (int c = 0; c < 3; ++c) edges.emplace_back(std::minmax(t[c], t[(c + 1) % 3]));
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  return edges;
-}
-
-}  // namespace
 
 std::vector<int32_t> disk_boundary_loop(size_t n, const std::vector<std::array<int32_t, 3>>& triangles) {
   // Directed edges, sorted by their undirected key: an interior edge shows
@@ -88,24 +76,28 @@ bool convex_combination_map(size_t n, const std::vector<std::array<int32_t, 3>>&
   std::vector<Eigen::Triplet<double>> entries;
   Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(free_count, 2);
   std::vector<double> diagonal(free_count, 0.0);
-  for (const auto& [a, b] : unique_edges(triangles)) {
-    double w = 1.0;
-    if (positions) {
-      const double length = ((*positions)[a] - (*positions)[b]).norm();
-      w = 1.0 / std::max(length, 1e-12);
+  const Adjacency neighbors = vertex_neighbors(n, triangles);
+  for (int32_t a = 0; a < static_cast<int32_t>(n); ++a)
+    for (const int32_t* nb = neighbors.begin(a); nb != neighbors.end(a); ++nb) {
+      const int32_t b = *nb;
+      if (b < a) continue;  // each edge once, as (a, b) with a < b
+      double w = 1.0;
+      if (positions) {
+        const double length = ((*positions)[a] - (*positions)[b]).norm();
+        w = 1.0 / std::max(length, 1e-12);
+      }
+      const int32_t ra = row[a], rb = row[b];
+      if (ra >= 0) diagonal[ra] += w;
+      if (rb >= 0) diagonal[rb] += w;
+      if (ra >= 0 && rb >= 0) {
+        entries.emplace_back(ra, rb, -w);
+        entries.emplace_back(rb, ra, -w);
+      } else if (ra >= 0) {
+        rhs.row(ra) += w * uv[b].transpose();
+      } else if (rb >= 0) {
+        rhs.row(rb) += w * uv[a].transpose();
+      }
     }
-    const int32_t ra = row[a], rb = row[b];
-    if (ra >= 0) diagonal[ra] += w;
-    if (rb >= 0) diagonal[rb] += w;
-    if (ra >= 0 && rb >= 0) {
-      entries.emplace_back(ra, rb, -w);
-      entries.emplace_back(rb, ra, -w);
-    } else if (ra >= 0) {
-      rhs.row(ra) += w * uv[b].transpose();
-    } else if (rb >= 0) {
-      rhs.row(rb) += w * uv[a].transpose();
-    }
-  }
   for (int32_t r = 0; r < free_count; ++r) entries.emplace_back(r, r, diagonal[r]);
   Eigen::SparseMatrix<double> m(free_count, free_count);
   m.setFromTriplets(entries.begin(), entries.end());
@@ -122,9 +114,7 @@ size_t untangle_planar(size_t n, const std::vector<std::array<int32_t, 3>>& tria
                        std::vector<Eigen::Vector2d>& uv, int passes) {
   // Per vertex, the triangles around it (a vertex's opposite edge in each
   // triangle, in the triangle's order, must have it on its left).
-  std::vector<std::vector<int32_t>> around(n);
-  for (size_t t = 0; t < triangles.size(); ++t)
-    for (int32_t v : triangles[t]) around[v].push_back(static_cast<int32_t>(t));
+  const Adjacency around = vertex_triangles(n, triangles);
   auto flipped = [&](int32_t t) {
     const auto& tri = triangles[t];
     return !(signed_area2(uv[tri[0]], uv[tri[1]], uv[tri[2]]) > 0.0);
@@ -150,8 +140,8 @@ size_t untangle_planar(size_t n, const std::vector<std::array<int32_t, 3>>& tria
     std::sort(todo.begin(), todo.end());
     for (int32_t v : todo) {
       lines.clear();
-      for (int32_t t : around[v]) {
-        const auto& tri = triangles[t];
+      for (const int32_t* t = around.begin(v); t != around.end(v); ++t) {
+        const auto& tri = triangles[*t];
         const int c = tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
         const Eigen::Vector2d &a = uv[tri[(c + 1) % 3]], &b = uv[tri[(c + 2) % 3]];
         const Eigen::Vector2d d = b - a;

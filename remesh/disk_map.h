@@ -27,6 +27,7 @@ std::vector<int32_t> disk_boundary_loop(size_t n, const std::vector<std::array<i
 // when given (the edge's 3D length), 1 otherwise. uv holds the fixed
 // vertices' positions on entry and every vertex's on return. False when a
 // free vertex has no path to a fixed one (the system is singular).
+// Triangle indices must be in [0, n), as for untangle_planar.
 bool convex_combination_map(size_t n, const std::vector<std::array<int32_t, 3>>& triangles,
                             const std::vector<Eigen::Vector3d>* positions, const std::vector<char>& fixed,
                             std::vector<Eigen::Vector2d>& uv);

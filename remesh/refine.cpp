@@ -1236,18 +1236,9 @@ class Refiner {
 
   // RefineLevelReport::folded_by_nearest_input for the current level's mesh.
   size_t folded_by_nearest_input() const {
-    const int32_t inputs = static_cast<int32_t>(input_.positions.size());
     std::vector<Eigen::Vector3d> corner_normal(anchor_.size(), Eigen::Vector3d::Zero());
     for (size_t s = 0; s < anchor_.size(); ++s) {
-      int32_t a = anchor_[s];
-      if (a < 0) continue;
-      if (a >= inputs) {
-        uint32_t nearest = 0;
-        double d2 = 0.0;
-        input_tree_.knnSearch(points_[a].data(), 1, &nearest, &d2);
-        a = static_cast<int32_t>(nearest);
-      }
-      corner_normal[s] = normals_[a];
+      if (anchor_[s] >= 0) corner_normal[s] = normals_[nearest_input_vertex(anchor_[s])];
     }
     size_t folded = 0;
     for (const auto& t : triangles_) {
