@@ -338,9 +338,11 @@ size_t TriangleHierarchy::level_triangle_bound(int32_t level) const {
   return bound;
 }
 
-std::vector<std::array<int32_t, 3>> TriangleHierarchy::level_triangles(int32_t level) const {
+std::vector<std::array<int32_t, 3>> TriangleHierarchy::level_triangles(int32_t level,
+                                                                     std::vector<int32_t>* node_of) const {
   level = std::clamp(level, 0, max_level_);
   std::vector<std::array<int32_t, 3>> out;
+  if (node_of) node_of->clear();
   // Reserved once: grown by doubling, the finest mesh was copied several
   // times over and left pages touched for nothing (the decoder's output).
   out.reserve(level_triangle_bound(level));
@@ -368,6 +370,7 @@ std::vector<std::array<int32_t, 3>> TriangleHierarchy::level_triangles(int32_t l
         }
       if (hanging < 0) {
         out.push_back(n.v);
+        if (node_of) node_of->push_back(t);
         continue;
       }
       const int e = hanging;
@@ -377,6 +380,7 @@ std::vector<std::array<int32_t, 3>> TriangleHierarchy::level_triangles(int32_t l
       const int32_t a = n.v[e], b = n.v[next3(e)], c = n.v[next3(next3(e))];
       out.push_back({a, m, c});
       out.push_back({m, b, c});
+      if (node_of) node_of->insert(node_of->end(), 2, t);
     }
   }
   return out;

@@ -79,7 +79,8 @@ class TriangleHierarchy {
   // leaves there, each with at most one hanging vertex (a midpoint of level
   // <= `level` on one edge) replaced by the two triangles of its green
   // bisection. Orientation is the base triangles'. Deterministic order.
-  std::vector<std::array<int32_t, 3>> level_triangles(int32_t level) const;
+  // With `node_of`, also the node each triangle comes from.
+  std::vector<std::array<int32_t, 3>> level_triangles(int32_t level, std::vector<int32_t>* node_of = nullptr) const;
 
   // Number of vertices of level <= `level` (vertices are numbered by level:
   // all of level l come before any of level l + 1 only if refinement ran

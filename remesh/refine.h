@@ -25,10 +25,10 @@ struct RefineOptions {
   // Counts are of the mesh refinement runs on (the oversampled input).
   double threshold = 0.0;
   bool uniform = false;  // split every triangle of every level, whatever g(t)
-  // Geometric criterion (not the paper's), with Eq. 5 or uniform: a selected
-  // triangle is split only when the RMS distance from the input vertices it
-  // covers to the current level's mesh, pooled over it and its three
-  // siblings, exceeds this (in the input's units). 0 turns it off.
+  // Geometric criterion (not the paper's), with Eq. 5 or uniform: once the
+  // last level is relaxed, a split is undone (bottom up) where the RMS
+  // distance from the input vertices under the split triangle to its plane
+  // is within this (in the input's units). 0 turns it off.
   double tolerance = 0.0;
   // Lloyd steps per level; a level also stops when fewer than
   // min_moved_fraction of its sites moved in a step.
@@ -39,9 +39,9 @@ struct RefineOptions {
 
 struct RefineLevelReport {
   int level = 0;               // the level built
-  size_t selected = 0;         // triangles of the level below to split: g(t) > threshold, beyond the tolerance
-  size_t within_tolerance = 0;  // of those with g(t) > threshold, the ones left within the tolerance
-  size_t split = 0;            // triangles split, with balance and closure splits
+  size_t selected = 0;         // triangles of the level below to split: g(t) > threshold
+  size_t within_tolerance = 0;  // triangles of the level below whose split the tolerance undid
+  size_t split = 0;            // triangles split, with balance and closure splits (those kept, with a tolerance)
   size_t vertices = 0;         // vertices of the level's mesh
   size_t triangles = 0;        // triangles of the level's mesh
   int lloyd_iterations = 0;

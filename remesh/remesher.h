@@ -29,9 +29,10 @@ struct RemeshOptions {
   double threshold = 0.0;  // Eq. 5's epsilon, in vertices of the oversampled input
   bool uniform = false;    // split everything; the threshold is then unused
   // Geometric criterion (RefineOptions::tolerance) as a PSNR in dB, the
-  // project's metric's scale: a triangle stays unsplit where the input's RMS
-  // distance to it is within the bounding-box diagonal x 10^(-dB/20). Applies
-  // with uniform or the threshold; 0 turns it off.
+  // project's metric's scale: after the last level, a triangle's split is
+  // undone where the input's RMS distance to its plane is within the
+  // bounding-box diagonal x 10^(-dB/20). Applies with uniform or the
+  // threshold; 0 turns it off.
   double tolerance_db = 0.0;
   int oversample = -1;     // Butterfly/Loop steps 0..3; -1 = auto, per component (remesher.cpp)
   OversampleScheme scheme = OversampleScheme::kButterfly;

@@ -344,6 +344,11 @@ TEST(Remesher, ToleranceRefinesOnlyWhereTheSurfaceIsDetailed) {
   EXPECT_GT(count(fine_a, 0.75, 1.0), count(fine_u, 0.75, 1.0) * 9 / 10);
   EXPECT_LT(fine_a.triangles.size(), fine_u.triangles.size() * 7 / 10);
   EXPECT_EQ(folded_triangles(square, fine_a), 0u) << "uniform: " << folded_triangles(square, fine_u);
+  // The tolerance undoes splits of the uniform refinement once it is relaxed:
+  // the vertices left keep their uniform places.
+  std::set<std::array<double, 3>> uniform_places;
+  for (const Eigen::Vector3d& p : fine_u.positions) uniform_places.insert({p.x(), p.y(), p.z()});
+  for (const Eigen::Vector3d& p : fine_a.positions) EXPECT_EQ(uniform_places.count({p.x(), p.y(), p.z()}), 1u);
 }
 
 TEST(Remesher, TooManyBaseVerticesSaysWhatWouldWork) {

@@ -20,8 +20,9 @@ void add_remesh_flags(CLI::App* cmd, RemeshFlags& f) {
   threshold->check(kFiniteNumber)->check(CLI::NonNegativeNumber);
   cmd->add_flag("--uniform", f.uniform, "Split every triangle (the default without --threshold)")->excludes(threshold);
   cmd->add_option("--tolerance", f.tolerance_db,
-                  "Adaptive by geometry: leave a triangle unsplit where the input's RMS distance to it is within "
-                  "this PSNR in dB (bounding-box diagonal x 10^(-dB/20)); with --uniform or --threshold")
+                  "Adaptive by geometry: after the last level, undo a triangle's split where the input's RMS "
+                  "distance to it is within this PSNR in dB (bounding-box diagonal x 10^(-dB/20)); with --uniform "
+                  "or --threshold")
       ->check(kFiniteNumber)
       ->check(CLI::Range(1.0, 300.0));
   cmd->add_option("--oversample", f.oversample, "Subdivision steps before remeshing: auto, 0, 1, 2 or 3")
