@@ -190,41 +190,7 @@ class Refiner {
                " Lloyd steps" + tangles + ", " + std::to_string(lr.seconds) + " s");
       if (report) report->push_back(lr);
     }
-    if (options_.tolerance > 0.0 && level > 0) {
-      const auto start = std::chrono::steady_clock::now();
-      SRCODEC_ASSIGN_OR_RETURN(const std::vector<size_t> undone, coarsen(level, cell_of));
-      build_level_mesh(level);
-      RefineLevelReport lr;  // the repairs' counts on the coarsened mesh
-      untangle(level, lr);
-      count_tangles(lr);
-      if (report) {
-        std::vector<size_t> split(static_cast<size_t>(level), 0);
-        for (const TriangleHierarchy::Node& node : h_.nodes())
-          if (node.first_child >= 0) ++split[node.level];
-        for (int32_t k = 0; k < level; ++k) {
-          RefineLevelReport& r = (*report)[k];
-          r.within_tolerance = undone[k];
-          r.split = split[k];
-          r.vertices = h_.level_vertex_count(k + 1);
-          r.triangles = h_.level_triangles(k + 1).size();
-        }
-        RefineLevelReport& last = report->back();
-        last.untangled += lr.untangled;
-        last.off_input_moves += lr.off_input_moves;
-        last.smoothed += lr.smoothed;
-        last.midpoint_resets += lr.midpoint_resets;
-        last.reparameterized += lr.reparameterized;
-        last.folded_triangles = lr.folded_triangles;
-        last.coarse_folded_triangles = lr.coarse_folded_triangles;
-        last.folded_by_nearest_input = lr.folded_by_nearest_input;
-        last.pleats = lr.pleats;
-        last.seconds += seconds_since(start);
-      }
-      progress("tolerance: " + std::to_string(triangles_.size()) + " triangles left, " +
-               std::to_string(lr.folded_triangles) + " folded (" + std::to_string(lr.coarse_folded_triangles) +
-               " on coarser levels), " + std::to_string(lr.pleats) + " pleats, " +
-               std::to_string(seconds_since(start)) + " s");
-    }
+    if (options_.tolerance > 0.0 && level > 0) SRCODEC_RETURN_IF_ERROR(coarsen(level, cell_of, report));
     return ok_status();
   }
 
@@ -1359,22 +1325,65 @@ class Refiner {
     return out;
   }
 
+  // The tolerance, once the last level is relaxed: undo_splits, then the
+  // repairs on the new finest mesh, and the level reports brought up to date
+  // (fewer levels when every split of the top ones was undone).
+  Status coarsen(int32_t level, const std::vector<int32_t>& cell_of, std::vector<RefineLevelReport>* report) {
+    const auto start = std::chrono::steady_clock::now();
+    SRCODEC_ASSIGN_OR_RETURN(const std::vector<size_t> undone, undo_splits(level, cell_of));
+    level = h_.max_level();  // every split of the top levels may be undone
+    build_level_mesh(level);
+    RefineLevelReport lr;  // the repairs' counts on the coarsened mesh
+    untangle(level, lr);
+    count_tangles(lr);
+    if (report) report->resize(static_cast<size_t>(level));
+    if (report && level > 0) {
+      std::vector<size_t> split(static_cast<size_t>(level), 0);
+      for (const TriangleHierarchy::Node& node : h_.nodes())
+        if (node.first_child >= 0) ++split[node.level];
+      for (int32_t k = 0; k < level; ++k) {
+        RefineLevelReport& r = (*report)[k];
+        r.within_tolerance = undone[k];
+        r.split = split[k];
+        r.vertices = h_.level_vertex_count(k + 1);
+        r.triangles = h_.level_triangles(k + 1).size();
+      }
+      RefineLevelReport& last = report->back();
+      last.untangled += lr.untangled;
+      last.off_input_moves += lr.off_input_moves;
+      last.smoothed += lr.smoothed;
+      last.midpoint_resets += lr.midpoint_resets;
+      last.reparameterized += lr.reparameterized;
+      last.folded_triangles = lr.folded_triangles;
+      last.coarse_folded_triangles = lr.coarse_folded_triangles;
+      last.folded_by_nearest_input = lr.folded_by_nearest_input;
+      last.pleats = lr.pleats;
+      last.seconds += seconds_since(start);
+    }
+    progress("tolerance: " + std::to_string(triangles_.size()) + " triangles left, " +
+             std::to_string(lr.folded_triangles) + " folded (" + std::to_string(lr.coarse_folded_triangles) +
+             " on coarser levels), " + std::to_string(lr.pleats) + " pleats, " +
+             std::to_string(seconds_since(start)) + " s");
+    return ok_status();
+  }
+
   // The geometric criterion (ours; the paper's Eq. 5 only counts vertices,
   // which on an evenly sampled scan selects nearly everything or an arbitrary
   // part), applied once the last level is relaxed: splits are undone bottom
   // up where the input under a split node, whose children are leaves, lies
-  // within the tolerance of the node's own triangle (RMS distance of the
-  // input vertices whose nearest triangle of the finest mesh is under the
-  // node; 0 when there are none). The kept splits are replayed into a new
-  // hierarchy, which adds the balance and closure splits they need, and its
-  // sites keep the places the full refinement gave them; the repairs then
-  // run on the new finest mesh. Deciding level by level before each
-  // relaxation instead (sessions 2-11), each adaptive run relaxed into its
-  // own tangles at thin parts, and the adaptive runs stayed 0.6-1.1 dB below
-  // uniform 5 levels on armadillo and nefertiti however many triangles they
-  // kept. Returns the number of splits undone per level (index k: nodes of
-  // level k left unsplit).
-  StatusOr<std::vector<size_t>> coarsen(int32_t level, const std::vector<int32_t>& cell_of) {
+  // within the tolerance of the node's plane (RMS distance of the input
+  // vertices whose nearest triangle of the finest mesh is under the node; 0
+  // when there are none). The plane, not the triangle: the children of a
+  // relaxed triangle do not tile its footprint, and a flat part's input lies
+  // outside its parent triangle by up to an edge. The kept splits are
+  // replayed into a new hierarchy, which adds the balance and closure splits
+  // they need, and its sites keep the places the full refinement gave them.
+  // Deciding level by level before each relaxation instead (sessions 2-11),
+  // each adaptive run relaxed into its own tangles at thin parts, and the
+  // adaptive runs stayed 0.6-2.7 dB below uniform 5 levels on armadillo and
+  // nefertiti however many triangles they kept. Returns the number of splits
+  // undone per level (index k: nodes of level k left unsplit).
+  StatusOr<std::vector<size_t>> undo_splits(int32_t level, const std::vector<int32_t>& cell_of) {
     // Each input vertex's nearest triangle of the finest mesh (among those
     // around its cell's site), and that triangle's node.
     std::vector<int32_t> node_of;
@@ -1399,7 +1408,7 @@ class Refiner {
       }
     });
     // Bottom up: a split node whose children are all leaves becomes a leaf
-    // when its input is within the tolerance of its triangle.
+    // when its input is within the tolerance of its plane.
     const auto& nodes = h_.nodes();
     std::vector<char> leaf(nodes.size());
     for (size_t n = 0; n < nodes.size(); ++n) leaf[n] = nodes[n].first_child < 0;

@@ -351,6 +351,23 @@ TEST(Remesher, ToleranceRefinesOnlyWhereTheSurfaceIsDetailed) {
   for (const Eigen::Vector3d& p : fine_a.positions) EXPECT_EQ(uniform_places.count({p.x(), p.y(), p.z()}), 1u);
 }
 
+// A tolerance above every deviation undoes every split: the result is the
+// base mesh with no levels, not levels that repeat it (the encoder refuses
+// those).
+TEST(Remesher, ToleranceAboveEveryDeviationLeavesTheBaseMesh) {
+  TriangleMesh square = test::flat_square(90);
+  for (Eigen::Vector3d& p : square.positions) p.z() = 0.01 * std::sin(20.0 * p.x()) * std::sin(20.0 * p.y());
+  RemeshOptions o = small_options(3, 30, true);
+  o.tolerance_db = 1.0;
+  RemeshReport report;
+  auto srm = remesh(square, o, &report);
+  ASSERT_TRUE(srm.ok()) << srm.status().message();
+  EXPECT_EQ(srm->levels, 0);
+  EXPECT_TRUE(report.levels.empty());
+  EXPECT_EQ(srm->level_mesh(0).triangles.size(), srm->base.triangles.size());
+  expect_semi_regular(srm.value());
+}
+
 TEST(Remesher, TooManyBaseVerticesSaysWhatWouldWork) {
   const TriangleMesh tet = test::tetrahedron();
   auto srm = remesh(tet, small_options(1, 100, true));
