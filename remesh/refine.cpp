@@ -1330,7 +1330,15 @@ class Refiner {
   // (fewer levels when every split of the top ones was undone).
   Status coarsen(int32_t level, const std::vector<int32_t>& cell_of, std::vector<RefineLevelReport>* report) {
     const auto start = std::chrono::steady_clock::now();
-    SRCODEC_ASSIGN_OR_RETURN(const std::vector<size_t> undone, undo_splits(level, cell_of));
+    auto splits_per_level = [&] {  // index k: nodes of level k that are split
+      std::vector<size_t> split(static_cast<size_t>(level), 0);
+      for (const TriangleHierarchy::Node& node : h_.nodes())
+        if (node.first_child >= 0) ++split[node.level];
+      return split;
+    };
+    const std::vector<size_t> split_before = splits_per_level();
+    SRCODEC_RETURN_IF_ERROR(undo_splits(level, cell_of));
+    const std::vector<size_t> split = splits_per_level();  // the closure's put back are not undone
     level = h_.max_level();  // every split of the top levels may be undone
     build_level_mesh(level);
     RefineLevelReport lr;  // the repairs' counts on the coarsened mesh
@@ -1338,15 +1346,12 @@ class Refiner {
     count_tangles(lr);
     if (report) report->resize(static_cast<size_t>(level));
     if (report && level > 0) {
-      std::vector<size_t> split(static_cast<size_t>(level), 0);
-      for (const TriangleHierarchy::Node& node : h_.nodes())
-        if (node.first_child >= 0) ++split[node.level];
       for (int32_t k = 0; k < level; ++k) {
         RefineLevelReport& r = (*report)[k];
-        r.within_tolerance = undone[k];
+        r.within_tolerance = split_before[k] - split[k];
         r.split = split[k];
         r.vertices = h_.level_vertex_count(k + 1);
-        r.triangles = h_.level_triangles(k + 1).size();
+        r.triangles = k + 1 < level ? coarse_triangles_[k + 1].size() : triangles_.size();  // build_level_mesh's
       }
       RefineLevelReport& last = report->back();
       last.untangled += lr.untangled;
@@ -1384,9 +1389,8 @@ class Refiner {
   // Deciding level by level before each relaxation instead (sessions 2-11),
   // each adaptive run relaxed into its own tangles at thin parts, and the
   // adaptive runs stayed 0.6-2.7 dB below uniform 5 levels on armadillo and
-  // nefertiti however many triangles they kept. Returns the number of splits
-  // undone per level (index k: nodes of level k left unsplit).
-  StatusOr<std::vector<size_t>> undo_splits(int32_t level, const std::vector<int32_t>& cell_of) {
+  // nefertiti however many triangles they kept.
+  Status undo_splits(int32_t level, const std::vector<int32_t>& cell_of) {
     // Each input vertex's nearest triangle of the finest mesh (among those
     // around its cell's site), and that triangle's node.
     std::vector<int32_t> node_of;
@@ -1424,8 +1428,11 @@ class Refiner {
         const int32_t first = nodes[n].first_child;
         return std::all_of(&leaf[first], &leaf[first] + 4, [](char c) { return c != 0; });
       };
+      // Each input vertex's squared distance to the candidate it is under
+      // (negative: under none).
       tbb::parallel_for(tbb::blocked_range<size_t>(0, inputs, 4096), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i != r.end(); ++i) {
+          squared[i] = -1.0;
           if (under[i] < 0) continue;
           while (nodes[under[i]].level > k) under[i] = nodes[under[i]].parent;
           const TriangleHierarchy::Node& node = nodes[under[i]];
@@ -1440,7 +1447,7 @@ class Refiner {
         }
       });
       for (size_t i = 0; i < inputs; ++i)
-        if (under[i] >= 0 && candidate(under[i])) {
+        if (squared[i] >= 0.0) {
           sum[under[i]] += squared[i];
           ++count[under[i]];
         }
@@ -1480,12 +1487,6 @@ class Refiner {
     std::vector<int32_t> old_vertex(static_cast<size_t>(kept.vertex_count()), -1);
     for (size_t n = 0; n < old_node.size(); ++n)
       for (int c = 0; c < 3; ++c) old_vertex[kept.nodes()[n].v[c]] = nodes[old_node[n]].v[c];
-    // The splits undone, per level (those the closure put back are not).
-    std::vector<size_t> undone(static_cast<size_t>(level), 0);
-    for (size_t n = 0; n < nodes.size(); ++n)
-      if (nodes[n].first_child >= 0) ++undone[nodes[n].level];
-    for (const TriangleHierarchy::Node& node : kept.nodes())
-      if (node.first_child >= 0) --undone[node.level];
     std::vector<int32_t> anchor(old_vertex.size());
     for (int32_t a : anchor_) site_of_[a] = -1;
     for (size_t v = 0; v < old_vertex.size(); ++v) {
@@ -1494,7 +1495,7 @@ class Refiner {
     }
     h_ = std::move(kept);
     anchor_ = std::move(anchor);
-    return undone;
+    return ok_status();
   }
 
   const TriangleMesh& input_;
