@@ -161,7 +161,11 @@ class Refiner {
       lr.level = level + 1;
       const std::vector<int32_t> selected = select(level, cell_of);
       lr.selected = selected.size();
-      if (selected.empty()) {
+      if (options_.threshold_after_uniform && std::none_of(selected.begin(), selected.end(), [&](int32_t n) {
+            return g_of_[n] > options_.threshold;
+          }))
+        lr.selected = 0;  // nothing would be kept above this level
+      if (lr.selected == 0) {
         progress("level " + std::to_string(level + 1) + ": no triangle passes the threshold; refinement stops");
         break;
       }
@@ -190,7 +194,8 @@ class Refiner {
                " Lloyd steps" + tangles + ", " + std::to_string(lr.seconds) + " s");
       if (report) report->push_back(lr);
     }
-    if (options_.tolerance > 0.0 && level > 0) SRCODEC_RETURN_IF_ERROR(coarsen(level, cell_of, report));
+    if ((options_.tolerance > 0.0 || options_.threshold_after_uniform) && level > 0)
+      SRCODEC_RETURN_IF_ERROR(coarsen(level, cell_of, report));
     return ok_status();
   }
 
@@ -1309,36 +1314,36 @@ class Refiner {
 
   // Eqs. 4-5: f(s) = vertices in the cell of s, g(t) = min over t's corners;
   // the leaves of `level` with g(t) > threshold (all of them when uniform).
-  std::vector<int32_t> select(int32_t level, const std::vector<int32_t>& cell_of) const {
+  // With threshold_after_uniform, all of them, and g(t) kept for undo_splits.
+  std::vector<int32_t> select(int32_t level, const std::vector<int32_t>& cell_of) {
     std::vector<int32_t> f(static_cast<size_t>(h_.vertex_count()), 0);
     for (int32_t s : cell_of)
       if (s >= 0) ++f[s];
     std::vector<int32_t> out;
     const auto& nodes = h_.nodes();
+    if (options_.threshold_after_uniform) g_of_.resize(nodes.size(), -1);
     for (size_t n = 0; n < nodes.size(); ++n) {
       const TriangleHierarchy::Node& node = nodes[n];
       if (node.level != level || node.first_child >= 0) continue;
       const int32_t g = std::min({f[node.v[0]], f[node.v[1]], f[node.v[2]]});
-      if (!options_.uniform && !(g > options_.threshold)) continue;
+      if (options_.threshold_after_uniform) g_of_[n] = g;
+      if (!options_.uniform && !options_.threshold_after_uniform && !(g > options_.threshold)) continue;
       out.push_back(static_cast<int32_t>(n));
     }
     return out;
   }
 
-  // The tolerance, once the last level is relaxed: undo_splits, then the
-  // repairs on the new finest mesh, and the level reports brought up to date
-  // (fewer levels when every split of the top ones was undone).
+  // The tolerance, or the threshold after a uniform refinement, once the
+  // last level is relaxed: undo_splits, then the repairs on the new finest
+  // mesh, and the level reports brought up to date (fewer levels when every
+  // split of the top ones was undone).
   Status coarsen(int32_t level, const std::vector<int32_t>& cell_of, std::vector<RefineLevelReport>* report) {
     const auto start = std::chrono::steady_clock::now();
-    auto splits_per_level = [&] {  // index k: nodes of level k that are split
-      std::vector<size_t> split(static_cast<size_t>(level), 0);
-      for (const TriangleHierarchy::Node& node : h_.nodes())
-        if (node.first_child >= 0) ++split[node.level];
-      return split;
-    };
-    const std::vector<size_t> split_before = splits_per_level();
-    SRCODEC_RETURN_IF_ERROR(undo_splits(level, cell_of));
-    const std::vector<size_t> split = splits_per_level();  // the closure's put back are not undone
+    std::vector<size_t> selected, within_tolerance;
+    SRCODEC_RETURN_IF_ERROR(undo_splits(level, cell_of, &selected, &within_tolerance));
+    std::vector<size_t> split(static_cast<size_t>(level), 0);  // with the closure's
+    for (const TriangleHierarchy::Node& node : h_.nodes())
+      if (node.first_child >= 0) ++split[node.level];
     level = h_.max_level();  // every split of the top levels may be undone
     build_level_mesh(level);
     RefineLevelReport lr;  // the repairs' counts on the coarsened mesh
@@ -1348,7 +1353,8 @@ class Refiner {
     if (report && level > 0) {
       for (int32_t k = 0; k < level; ++k) {
         RefineLevelReport& r = (*report)[k];
-        r.within_tolerance = split_before[k] - split[k];
+        if (options_.threshold_after_uniform) r.selected = selected[k];
+        r.within_tolerance = within_tolerance[k];
         r.split = split[k];
         r.vertices = h_.level_vertex_count(k + 1);
         r.triangles = k + 1 < level ? coarse_triangles_[k + 1].size() : triangles_.size();  // build_level_mesh's
@@ -1365,7 +1371,10 @@ class Refiner {
       last.pleats = lr.pleats;
       last.seconds += seconds_since(start);
     }
-    progress("tolerance: " + std::to_string(triangles_.size()) + " triangles left, " +
+    const std::string criteria = options_.threshold_after_uniform && options_.tolerance > 0.0 ? "threshold and tolerance"
+                                 : options_.threshold_after_uniform                             ? "threshold"
+                                                                                                : "tolerance";
+    progress(criteria + ": " + std::to_string(triangles_.size()) + " triangles left, " +
              std::to_string(lr.folded_triangles) + " folded (" + std::to_string(lr.coarse_folded_triangles) +
              " on coarser levels), " + std::to_string(lr.pleats) + " pleats, " +
              std::to_string(seconds_since(start)) + " s");
@@ -1390,7 +1399,14 @@ class Refiner {
   // each adaptive run relaxed into its own tangles at thin parts, and the
   // adaptive runs stayed 0.6-2.7 dB below uniform 5 levels on armadillo and
   // nefertiti however many triangles they kept.
-  Status undo_splits(int32_t level, const std::vector<int32_t>& cell_of) {
+  //
+  // With threshold_after_uniform, Eq. 5 first: a split node whose g(t) at
+  // its level was within the threshold becomes a leaf, and all below it
+  // goes. Per level k, `selected` counts the split nodes of level k that
+  // Eq. 5 kept and `within_tolerance` those the tolerance then undid (the
+  // closure can put some back).
+  Status undo_splits(int32_t level, const std::vector<int32_t>& cell_of, std::vector<size_t>* selected,
+                     std::vector<size_t>* within_tolerance) {
     // Each input vertex's nearest triangle of the finest mesh (among those
     // around its cell's site), and that triangle's node.
     std::vector<int32_t> node_of;
@@ -1420,9 +1436,20 @@ class Refiner {
     const auto& nodes = h_.nodes();
     std::vector<char> leaf(nodes.size());
     for (size_t n = 0; n < nodes.size(); ++n) leaf[n] = nodes[n].first_child < 0;
+    if (options_.threshold_after_uniform)
+      for (size_t n = 0; n < nodes.size(); ++n)  // a parent comes before its children
+        if (!leaf[n] && ((nodes[n].parent >= 0 && leaf[nodes[n].parent]) || !(g_of_[n] > options_.threshold)))
+          leaf[n] = 1;
+    auto kept_splits = [&] {
+      std::vector<size_t> kept(static_cast<size_t>(level), 0);
+      for (size_t n = 0; n < nodes.size(); ++n)
+        if (!leaf[n]) ++kept[nodes[n].level];
+      return kept;
+    };
+    *selected = kept_splits();
     std::vector<double> squared(inputs, 0.0), sum(nodes.size(), 0.0);
     std::vector<int64_t> count(nodes.size(), 0);
-    for (int32_t k = level - 1; k >= 0; --k) {
+    for (int32_t k = options_.tolerance > 0.0 ? level - 1 : -1; k >= 0; --k) {
       auto candidate = [&](int32_t n) {
         if (nodes[n].level != k || leaf[n]) return false;
         const int32_t first = nodes[n].first_child;
@@ -1456,6 +1483,8 @@ class Refiner {
             (count[n] == 0 || std::sqrt(sum[n] / static_cast<double>(count[n])) <= options_.tolerance))
           leaf[n] = 1;
     }
+    *within_tolerance = kept_splits();
+    for (int32_t k = 0; k < level; ++k) (*within_tolerance)[k] = (*selected)[k] - (*within_tolerance)[k];
     // The kept splits, replayed level by level. A node of the new hierarchy
     // stands for the old node at the same place: the roots for themselves,
     // children for the old node's children in the same order.
@@ -1531,6 +1560,7 @@ class Refiner {
   // its neighbours, and its place in the current region (-1: none).
   Adjacency input_neighbors_;
   std::vector<int32_t> region_id_;
+  std::vector<int32_t> g_of_;  // per node, with threshold_after_uniform: Eq. 5's g(t) when it was a leaf
 };
 
 }  // namespace

@@ -25,6 +25,13 @@ struct RefineOptions {
   // Counts are of the mesh refinement runs on (the oversampled input).
   double threshold = 0.0;
   bool uniform = false;  // split every triangle of every level, whatever g(t)
+  // Eq. 5 judged on a uniform refinement: every level is split and relaxed
+  // as with `uniform`, g(t) is taken from each level's relaxed cells, and
+  // once the last level is relaxed every split with g(t) <= threshold is
+  // undone with all below it. Off: each level splits only the selected
+  // triangles and relaxes that adaptive mesh (the paper's order), which
+  // costs less where the input is sparse but relaxes into worse tangles.
+  bool threshold_after_uniform = false;
   // Geometric criterion (not the paper's), with Eq. 5 or uniform: once the
   // last level is relaxed, a split is undone (bottom up) where the RMS
   // distance from the input vertices under the split triangle to its plane
@@ -39,7 +46,9 @@ struct RefineOptions {
 
 struct RefineLevelReport {
   int level = 0;               // the level built
-  size_t selected = 0;         // triangles of the level below to split: g(t) > threshold
+  // Triangles of the level below to split: g(t) > threshold (with
+  // threshold_after_uniform, those whose parent's split was kept).
+  size_t selected = 0;
   size_t within_tolerance = 0;  // triangles of the level below whose split the tolerance undid
   size_t split = 0;            // triangles split, with balance and closure splits (those kept, with a tolerance)
   size_t vertices = 0;         // vertices of the level's mesh

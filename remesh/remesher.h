@@ -48,6 +48,9 @@ struct RemeshReport {
   size_t base_vertices = 0;       // including promoted ones
   size_t promoted_vertices = 0;   // non-sites the base mesh had to keep (see build_base_mesh)
   size_t curled_sites = 0;        // sites added to split cells that wrap around thin parts (kMinCellFlatness)
+  // The threshold was judged on a uniform refinement (RefineOptions), not
+  // level by level: the input held enough vertices for one.
+  bool threshold_after_uniform = false;
   double seconds_oversample = 0.0, seconds_sites = 0.0, seconds_base = 0.0, seconds_refine = 0.0;
   std::vector<RefineLevelReport> levels;
 };

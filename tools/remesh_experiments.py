@@ -6,7 +6,8 @@ tolerances), and Butterfly against Loop oversampling (and, ours, linear: splits
 at the edges' midpoints, on the input's facets). Writes a CSV and a plot.
 
 usage: /usr/bin/python3 tools/remesh_experiments.py [--quick] [--out docs/remesh_experiments]
-  (needs build/tools/srcodec, python3-matplotlib; the corpus in ../shared/data/meshes)
+  (needs build/tools/srcodec, or the binary named by $SRCODEC; python3-matplotlib; the corpus in
+  ../shared/data/meshes)
 """
 import argparse
 import csv
@@ -17,7 +18,7 @@ import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-SRCODEC = os.path.join(ROOT, "build", "tools", "srcodec")
+SRCODEC = os.environ.get("SRCODEC", os.path.join(ROOT, "build", "tools", "srcodec"))
 CORPUS = os.path.join(ROOT, "..", "shared", "data", "meshes")
 
 # (mesh, levels, extra options) runs; thresholds are in vertices of the

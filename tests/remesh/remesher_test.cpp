@@ -353,6 +353,52 @@ TEST(Remesher, ToleranceRefinesOnlyWhereTheSurfaceIsDetailed) {
   for (const Eigen::Vector3d& p : fine_a.positions) EXPECT_EQ(uniform_places.count({p.x(), p.y(), p.z()}), 1u);
 }
 
+// Eq. 5 on a square sampled densely on its left and sparsely on its right
+// (x = t^2 over an even grid in t): the threshold keeps the last splits where
+// the cells hold many input vertices. It is judged on the uniform refinement
+// once relaxed, so the vertices left keep their uniform places; where the
+// input is too sparse for a uniform refinement, level by level instead.
+TEST(Remesher, ThresholdKeepsSplitsWhereTheInputIsDense) {
+  TriangleMesh square = test::flat_square(90);
+  for (Eigen::Vector3d& p : square.positions) p.x() = p.x() * p.x();
+  const RemeshOptions uniform = small_options(3, 30, true);
+  RemeshOptions adaptive = small_options(3, 30, false);
+  adaptive.threshold = 9;
+  RemeshReport report;
+  auto u = remesh(square, uniform);
+  auto a = remesh(square, adaptive, &report);
+  ASSERT_TRUE(u.ok()) << u.status().message();
+  ASSERT_TRUE(a.ok()) << a.status().message();
+  EXPECT_TRUE(report.threshold_after_uniform);
+  ASSERT_EQ(a->levels, 3);
+  expect_semi_regular(a.value());
+  auto count = [](const TriangleMesh& m, double lo, double hi) {  // away from the boundary
+    return std::count_if(m.positions.begin(), m.positions.end(), [&](const Eigen::Vector3d& p) {
+      return p.x() >= lo && p.x() <= hi && p.y() > 0.1 && p.y() < 0.9;
+    });
+  };
+  const TriangleMesh fine_u = u->level_mesh(3), fine_a = a->level_mesh(3);
+  EXPECT_GT(count(fine_a, 0.05, 0.25), count(fine_u, 0.05, 0.25) * 9 / 10);
+  EXPECT_LT(count(fine_a, 0.75, 1.0), count(fine_u, 0.75, 1.0) / 2);
+  EXPECT_LT(report.levels.back().selected, report.levels[1].triangles);
+  // All but the few sites the repairs moved on the coarsened mesh.
+  std::set<std::array<double, 3>> uniform_places;
+  for (const Eigen::Vector3d& p : fine_u.positions) uniform_places.insert({p.x(), p.y(), p.z()});
+  const auto moved = std::count_if(fine_a.positions.begin(), fine_a.positions.end(), [&](const Eigen::Vector3d& p) {
+    return uniform_places.count({p.x(), p.y(), p.z()}) == 0;
+  });
+  EXPECT_LE(moved, static_cast<std::ptrdiff_t>(fine_a.positions.size() / 100));
+
+  RemeshOptions deeper = adaptive;  // 4 uniform levels would need 2 x 7680 input vertices
+  deeper.levels = 4;
+  RemeshReport deeper_report;
+  auto d = remesh(square, deeper, &deeper_report);
+  ASSERT_TRUE(d.ok()) << d.status().message();
+  EXPECT_FALSE(deeper_report.threshold_after_uniform);
+  EXPECT_GE(d->levels, 3);
+  expect_semi_regular(d.value());
+}
+
 // A tolerance above every deviation undoes every split: the result is the
 // base mesh with no levels, not levels that repeat it (the encoder refuses
 // those).

@@ -105,6 +105,7 @@ Status run_remesh(const RemeshCliOptions& o) {
         .field("curled_sites", report.curled_sites)
         .field("uniform", options.uniform)
         .field("threshold", options.threshold)
+        .field("threshold_after_uniform", report.threshold_after_uniform)
         .field("tolerance_db", options.tolerance_db)
         .field("seconds", seconds)
         .array("levels", level_json);

@@ -15,8 +15,9 @@ void add_remesh_flags(CLI::App* cmd, RemeshFlags& f) {
   cmd->add_option("--base-vertices", f.base_vertices,
                   "Base mesh vertices (default: from the input size and levels, 100..4000; up to a quarter more where cells wrap around thin parts; see README)");
   auto* threshold = cmd->add_option("--threshold", f.threshold,
-                                    "Adaptive: split a triangle only when each corner's Voronoi cell holds more "
-                                    "than this many (oversampled) input vertices (Eq. 5)");
+                                    "Adaptive: keep a triangle's split only when each corner's Voronoi cell holds "
+                                    "more than this many (oversampled) input vertices (Eq. 5); judged on a uniform "
+                                    "refinement where the input is dense enough for one, else level by level");
   threshold->check(kFiniteNumber)->check(CLI::NonNegativeNumber);
   cmd->add_flag("--uniform", f.uniform, "Split every triangle (the default without --threshold)")->excludes(threshold);
   cmd->add_option("--tolerance", f.tolerance_db,
