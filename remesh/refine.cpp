@@ -147,6 +147,7 @@ class Refiner {
     tree_.buildIndex();
     input_tree_.buildIndex();
     build_face_points();
+    build_loops();
     anchor_ = base.input_vertex;
     for (size_t v = 0; v < anchor_.size(); ++v) site_of_[anchor_[v]] = static_cast<int32_t>(v);
   }
@@ -364,7 +365,18 @@ class Refiner {
     // point that is not an input vertex (counted in the level report).
     Eigen::Vector3d normal = normals_[anchor_[edge[0]]] + normals_[anchor_[edge[1]]];
     if (normal.norm() > 0.0) normal.normalize();
-    const int32_t i = add_point(midpoint, p, normal, site_on_boundary_[v]);
+    // On the boundary: halfway along the input's boundary between the
+    // edge's ends (the chord's midpoint when they are neighbours on it).
+    Eigen::Vector3d x = midpoint;
+    double place = 0.0;
+    const bool on_rim = site_on_boundary_[v] && rim_prev_[v] >= 0 && rim_next_[v] >= 0 &&
+                        rim_middle(rim_prev_[v], rim_next_[v], &x, &place);
+    const int32_t loop = on_rim ? loop_[anchor_[rim_prev_[v]]] : -1;
+    const int32_t i = add_point(x, p, normal, site_on_boundary_[v]);
+    if (on_rim) {
+      loop_[i] = loop;
+      loop_pos_[i] = place;
+    }
     ++midpoint_vertices_;
     return take(v, i);
   }
@@ -373,6 +385,8 @@ class Refiner {
     Eigen::Vector3d x;
     Eigen::Vector3d normal;  // unit, of the input triangle it lies on
     int32_t vertex = -1;     // the input vertex whose triangle it lies on (-1: none found)
+    int32_t loop = -1;       // nearest_on_boundary's: the boundary loop it lies on, and where (loop_)
+    double loop_pos = 0.0;
   };
 
   // The point of the input surface nearest to x among the triangles around
@@ -414,7 +428,13 @@ class Refiner {
   // The point of the input's boundary nearest to x among the boundary edges
   // at the input vertices nearest x (on the base faces near `face`); vertex
   // -1 when there is none.
-  SurfacePoint nearest_on_boundary(const Eigen::Vector3d& x, int32_t face) const {
+  // With `site` (a boundary site), only on the boundary between its
+  // boundary neighbours (on_rim_arc).
+  SurfacePoint nearest_on_boundary(const Eigen::Vector3d& x, int32_t face, int32_t site = -1) const {
+    auto on_arc = [&](int32_t i) {
+      return site < 0 || on_rim_arc(site, i) || (rim_prev_[site] >= 0 && i == anchor_[rim_prev_[site]]) ||
+             (rim_next_[site] >= 0 && i == anchor_[rim_next_[site]]);
+    };
     constexpr size_t kNear = 16;
     std::array<uint32_t, kNear> idx{};
     std::array<double, kNear> dist{};
@@ -427,7 +447,7 @@ class Refiner {
       for (const int32_t* t = input_around_.begin(i); t != input_around_.end(i); ++t)
         for (int32_t other : input_.triangles[*t]) {
           if (other == i || !input_on_boundary_[other] ||
-              triangles_on_edge(input_around_, input_.triangles, i, other) != 1)
+              triangles_on_edge(input_around_, input_.triangles, i, other) != 1 || !on_arc(i) || !on_arc(other))
             continue;
           const Eigen::Vector3d &a = points_[i], &b = points_[other];
           const double len2 = (b - a).squaredNorm();
@@ -439,6 +459,15 @@ class Refiner {
             out.x = q;
             out.vertex = along < 0.5 ? i : other;
             out.normal = normals_[out.vertex];
+            out.loop = -1;
+            const int32_t loop = loop_[i];
+            if (loop >= 0 && loop_[other] == loop) {  // neighbours along the loop, one way or the other
+              const double size = static_cast<double>(loop_walk_[loop].size());
+              const bool forward = std::fmod(loop_pos_[other] - loop_pos_[i] + size, size) == 1.0;
+              out.loop = loop;
+              out.loop_pos = forward ? loop_pos_[i] + along : std::fmod(loop_pos_[other] + 1.0 - along, size);
+              if (out.loop_pos >= size) out.loop_pos -= size;
+            }
           }
         }
     }
@@ -481,6 +510,15 @@ class Refiner {
     neighbors_ = vertex_neighbors(n, triangles_);
     around_ = vertex_triangles(n, triangles_);
     site_on_boundary_ = boundary_vertices(n, triangles_);
+    rim_prev_.assign(n, -1);
+    rim_next_.assign(n, -1);
+    for (const auto& t : triangles_)
+      for (int c = 0; c < 3; ++c) {
+        const int32_t a = t[c], b = t[(c + 1) % 3];
+        if (triangles_on_edge(around_, triangles_, a, b) != 1) continue;
+        rim_next_[a] = rim_next_[a] == -1 ? b : -2;  // -2: a vertex where boundaries touch
+        rim_prev_[b] = rim_prev_[b] == -1 ? a : -2;
+      }
     // The coarser levels' meshes too: sites of every level move, and each
     // level's mesh must stay unfolded, not only the finest.
     coarse_triangles_.resize(level);
@@ -494,7 +532,92 @@ class Refiner {
   // Boundary sites stay on the input's boundary and interior sites inside,
   // or the boundary would shrink and fold: a site may only sit on an input
   // vertex of its own kind.
-  bool allowed(int32_t site, int32_t i) const { return site_on_boundary_[site] == input_on_boundary_[i]; }
+  // And a boundary site keeps to the input's boundary between its two
+  // boundary neighbours (on_rim_arc).
+  bool allowed(int32_t site, int32_t i) const {
+    return site_on_boundary_[site] == input_on_boundary_[i] && (!site_on_boundary_[site] || on_rim_arc(site, i));
+  }
+
+  // The input's boundary loops, each walked the way its triangles run along
+  // it: per input vertex its loop (-1: none, or a loop that is not a simple
+  // cycle) and its place along it.
+  void build_loops() {
+    const size_t n = input_.positions.size();
+    std::vector<int32_t> next(n, -1);
+    std::vector<char> irregular(n, 0), visited(n, 0);
+    for (const auto& t : input_.triangles)
+      for (int c = 0; c < 3; ++c) {
+        const int32_t a = t[c], b = t[(c + 1) % 3];
+        if (triangles_on_edge(input_around_, input_.triangles, a, b) != 1) continue;
+        if (next[a] >= 0) irregular[a] = 1;
+        next[a] = b;
+      }
+    loop_.assign(n, -1);
+    loop_pos_.assign(n, 0.0);
+    for (size_t start = 0; start < n; ++start) {
+      if (next[start] < 0 || visited[start]) continue;
+      std::vector<int32_t> walk;
+      bool simple = true;
+      int32_t v = static_cast<int32_t>(start);
+      do {  // every vertex is walked once
+        simple = simple && !irregular[v];
+        visited[v] = 1;
+        walk.push_back(v);
+        v = next[v];
+      } while (v >= 0 && !visited[v]);
+      if (!simple || v != static_cast<int32_t>(start)) continue;  // not a simple cycle: no order to keep
+      for (size_t k = 0; k < walk.size(); ++k) {
+        loop_[walk[k]] = static_cast<int32_t>(loop_walk_.size());
+        loop_pos_[walk[k]] = static_cast<double>(k);
+      }
+      loop_walk_.push_back(std::move(walk));
+    }
+  }
+
+  // The point of the input's boundary halfway along the loop from a's
+  // point to b's (sites on one loop, in the loop's order), with its loop
+  // place; false when their order is not known.
+  bool rim_middle(int32_t a, int32_t b, Eigen::Vector3d* x, double* place) const {
+    const int32_t pa = anchor_[a], pb = anchor_[b];
+    if (pa < 0 || pb < 0 || loop_[pa] < 0 || loop_[pb] != loop_[pa]) return false;
+    const std::vector<int32_t>& walk = loop_walk_[loop_[pa]];
+    const double size = static_cast<double>(walk.size());
+    double span = std::fmod(loop_pos_[pb] - loop_pos_[pa] + size, size);
+    if (span == 0.0) span = size;
+    *place = std::fmod(loop_pos_[pa] + 0.5 * span, size);
+    const size_t k = static_cast<size_t>(*place);
+    const double t = *place - static_cast<double>(k);
+    *x = (1.0 - t) * points_[walk[k % walk.size()]] + t * points_[walk[(k + 1) % walk.size()]];
+    return true;
+  }
+
+  // Boundary site s (of the current level's mesh) may take boundary point i
+  // only between its boundary neighbours along the input's loop, the way the
+  // level's boundary edges run: a site taken from across a narrow hole
+  // (the bunny's slits) makes the remesh's boundary zigzag across it, with
+  // triangles over the hole. True wherever that order is not known (a
+  // point off the input's vertices, a loop that is not a simple cycle, a
+  // site whose own point is already out of order).
+  bool on_rim_arc(int32_t s, int32_t i) const {
+    const int32_t p = rim_prev_[s], n = rim_next_[s];
+    if (p < 0 || n < 0) return true;
+    const int32_t ap = anchor_[p], an = anchor_[n];
+    if (ap < 0 || an < 0) return true;
+    const int32_t loop = loop_[ap];
+    if (loop < 0 || loop_[an] != loop) return true;
+    const double size = static_cast<double>(loop_walk_[loop].size());
+    auto after_p = [&](int32_t x) { return std::fmod(loop_pos_[x] - loop_pos_[ap] + size, size); };
+    double span = after_p(an);
+    if (span == 0.0) span = size;
+    auto inside = [&](int32_t x) {
+      if (loop_[x] != loop) return false;
+      const double d = after_p(x);
+      return d > 0.0 && d < span;
+    };
+    const int32_t own = anchor_[s];
+    if (own >= 0 && loop_[own] >= 0 && !inside(own)) return true;
+    return loop_[i] < 0 || inside(i);
+  }
 
   std::vector<int32_t> reassign(int32_t level) const {
     constexpr int kMaxWalk = 64;
@@ -1151,8 +1274,14 @@ class Refiner {
     // `on` found it); undo() takes them back to their old points.
     const size_t points_before = points_.size();
     auto apply = [&] {
-      for (size_t j = 0; j < movable.size(); ++j)
-        move_site(movable[j], add_point(x[j], param_[on[j].vertex], on[j].normal, rim[j][0] >= 0));
+      for (size_t j = 0; j < movable.size(); ++j) {
+        const int32_t k = add_point(x[j], param_[on[j].vertex], on[j].normal, rim[j][0] >= 0);
+        if (rim[j][0] >= 0 && x[j] == on[j].x) {
+          loop_[k] = on[j].loop;
+          loop_pos_[k] = on[j].loop_pos;
+        }
+        move_site(movable[j], k);
+      }
     };
     auto undo = [&] {
       for (size_t j = 0; j < movable.size(); ++j) move_site(movable[j], old[j]);
@@ -1164,7 +1293,7 @@ class Refiner {
       for (size_t j = 0; j < movable.size(); ++j) {
         const int32_t s = movable[j];
         if (rim[j][0] >= 0) {
-          on[j] = nearest_on_boundary(0.5 * (position(rim[j][0]) + position(rim[j][1])), param_[old[j]].face);
+          on[j] = nearest_on_boundary(0.5 * (position(rim[j][0]) + position(rim[j][1])), param_[old[j]].face, s);
           stepped[j] = on[j].x;
           continue;
         }
@@ -1202,6 +1331,8 @@ class Refiner {
     normals_.push_back(normal);
     site_of_.push_back(-1);
     input_on_boundary_.push_back(boundary);
+    loop_.push_back(-1);
+    loop_pos_.push_back(0.0);
     return static_cast<int32_t>(points_.size() - 1);
   }
   void drop_last_point() {
@@ -1211,6 +1342,8 @@ class Refiner {
     normals_.pop_back();
     site_of_.pop_back();
     input_on_boundary_.pop_back();
+    loop_.pop_back();
+    loop_pos_.pop_back();
   }
 
   static Adjacency cells(const std::vector<int32_t>& cell_of, size_t sites) {
@@ -1561,6 +1694,15 @@ class Refiner {
   Adjacency input_neighbors_;
   std::vector<int32_t> region_id_;
   std::vector<int32_t> g_of_;  // per node, with threshold_after_uniform: Eq. 5's g(t) when it was a leaf
+  // build_loops': per point, its boundary loop (-1: none or not known) and
+  // place along it (a point added on the boundary: between its vertices'
+  // places); each loop's input vertices in order.
+  std::vector<int32_t> loop_;
+  std::vector<double> loop_pos_;
+  std::vector<std::vector<int32_t>> loop_walk_;
+  // Per site, in the current level's mesh: the boundary neighbours before
+  // and after it along the way its boundary edges run (-1: none, -2: more).
+  std::vector<int32_t> rim_prev_, rim_next_;
 };
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <set>
 #include <string>
 
+#include "format/mesh_clean.h"
 #include "format/mesh_io.h"
 #include "format/mesh_stats.h"
 #include "remesh/components.h"
@@ -304,6 +305,36 @@ TEST(Remesher, OpenSquareKeepsItsBoundary) {
   expect_semi_regular(srm.value());
   EXPECT_EQ(stats(srm->level_mesh(2)).boundary_loops, 1u);
   EXPECT_EQ(folded_triangles(square, srm->level_mesh(2)), 0u);
+}
+
+// A square with a slit narrower than the finest level's edges: the remesh's
+// boundary follows each rim of the slit in order, as the bunny's must at
+// its slits, instead of zigzagging across with triangles over the hole.
+TEST(Remesher, NarrowSlitStaysOpen) {
+  const TriangleMesh grid = test::flat_square(90);
+  TriangleMesh cut;
+  cut.positions = grid.positions;
+  // The slit: two columns of grid cells (x in 0.5 -+ 1/90), 0.6 long.
+  auto in_slit = [](const Eigen::Vector3d& p, double half_width, double end = 0.2) {
+    return std::abs(p.x() - 0.5) < half_width && p.y() > end && p.y() < 1.0 - end;
+  };
+  for (const auto& t : grid.triangles)
+    if (!in_slit((grid.positions[t[0]] + grid.positions[t[1]] + grid.positions[t[2]]) / 3.0, 1.0 / 90))
+      cut.triangles.push_back(t);
+  const TriangleMesh square = clean_mesh(to_polygon_mesh(cut));
+  ASSERT_EQ(stats(square).boundary_loops, 2u);
+  auto srm = remesh(square, small_options(3, 30, true));
+  ASSERT_TRUE(srm.ok()) << srm.status().message();
+  expect_semi_regular(srm.value());
+  const TriangleMesh fine = srm->level_mesh(3);
+  size_t over_the_slit = 0;
+  for (const auto& t : fine.triangles) {
+    const Eigen::Vector3d &a = fine.positions[t[0]], &b = fine.positions[t[1]], &c = fine.positions[t[2]];
+    for (double u : {0.25, 0.5})
+      for (double v : {0.25, 0.5}) over_the_slit += in_slit(a + u * (b - a) + v * (c - a), 0.5 / 90, 0.25);  // its middle
+  }
+  EXPECT_EQ(over_the_slit, 0u);
+  EXPECT_GT(psnr_against(square, fine), 70.0);
 }
 
 TEST(Remesher, DeterministicOutput) {
