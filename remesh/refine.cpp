@@ -1541,10 +1541,10 @@ class Refiner {
   Status undo_splits(int32_t level, const std::vector<int32_t>& cell_of, std::vector<size_t>* selected,
                      std::vector<size_t>* within_tolerance) {
     // Each input vertex's nearest triangle of the finest mesh (among those
-    // around its cell's site), and that triangle's node.
+    // around its cell's site), and that triangle's node; for the tolerance.
     std::vector<int32_t> node_of;
     h_.level_triangles(level, &node_of);
-    const size_t inputs = std::min(cell_of.size(), input_.positions.size());
+    const size_t inputs = options_.tolerance > 0.0 ? std::min(cell_of.size(), input_.positions.size()) : 0;
     std::vector<int32_t> under(inputs, -1);
     auto corner = [&](const std::array<int32_t, 3>& v, int c) -> const Eigen::Vector3d& { return points_[anchor_[v[c]]]; };
     tbb::parallel_for(tbb::blocked_range<size_t>(0, inputs, 4096), [&](const tbb::blocked_range<size_t>& r) {
