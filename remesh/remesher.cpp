@@ -162,6 +162,16 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
 
   SRCODEC_ASSIGN_OR_RETURN(std::vector<ComponentMesh> parts, split_into_manifold_components(mesh));
   rep.components = parts.size();
+  // Each component's share of the base is capped at its own vertex count
+  // (share_sites), whatever the oversampling: a larger request would get
+  // fewer base vertices than asked, with no word.
+  size_t input_vertices = 0;
+  for (const ComponentMesh& part : parts) input_vertices += part.mesh.positions.size();
+  if (options.base_vertices > input_vertices)
+    return invalid_argument("remesh: " + std::to_string(options.base_vertices) +
+                            " base vertices asked but the mesh has only " + std::to_string(input_vertices) +
+                            " vertices, and base vertices are taken among its own: ask for at most " +
+                            std::to_string(input_vertices) + " (--base-vertices)");
   size_t base_total = options.base_vertices > 0
                           ? options.base_vertices
                           : default_base_vertices(mesh.positions.size(), parts.size(), options.levels);

@@ -452,7 +452,21 @@ TEST(Remesher, TooManyBaseVerticesSaysWhatWouldWork) {
   auto srm = remesh(tet, small_options(1, 100, true));
   ASSERT_FALSE(srm.ok());
   EXPECT_NE(srm.status().message().find("base vertices"), std::string::npos) << srm.status().message();
-  EXPECT_NE(srm.status().message().find("oversample"), std::string::npos) << srm.status().message();
+  EXPECT_NE(srm.status().message().find("at most 4"), std::string::npos) << srm.status().message();
+  // Oversampling does not raise that bound (the base was silently capped).
+  RemeshOptions oversampled = small_options(1, 100, true);
+  oversampled.oversample = 3;
+  auto capped = remesh(tet, oversampled);
+  ASSERT_FALSE(capped.ok());
+  EXPECT_NE(capped.status().message().find("at most 4"), std::string::npos) << capped.status().message();
+  // As many base vertices as needed for the levels but more than the mesh
+  // holds before oversampling: the message names the bound.
+  const TriangleMesh sphere = test::icosphere(1, 1.0);  // 42 vertices
+  RemeshOptions o = small_options(1, 60, true);
+  o.oversample = 3;
+  auto sphere_srm = remesh(sphere, o);
+  ASSERT_FALSE(sphere_srm.ok());
+  EXPECT_NE(sphere_srm.status().message().find("at most 42"), std::string::npos) << sphere_srm.status().message();
 }
 
 TEST(Remesher, TooManyLevelsForTheInputSaysWhatWouldWork) {
