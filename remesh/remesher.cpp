@@ -297,8 +297,9 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
   // one: at 5 levels, against the paper's order, armadillo eps 4 at 99% of
   // uniform's triangles 69.36 -> 71.82 dB (uniform 72.20), nefertiti eps 16
   // at 64% 73.06 -> 74.67 dB (uniform 75.61), the bunny eps 16 at 49%
-  // 68.41 -> 69.52 dB (uniform 67.14, its hole rims fold), igea eps 16 at
-  // 58% 80.08 -> 79.28 dB (uniform 86.45; Eq. 5 is not geometric).
+  // 68.41 -> 69.52 dB (uniform 67.14; both before boundary sites kept to
+  // their loops, which took them to 73.49 and 74.88), igea eps 16 at 58%
+  // 80.08 -> 79.28 dB (uniform 86.45; Eq. 5 is not geometric).
   refine_options.threshold_after_uniform = !options.uniform && options.levels > 0 && !too_few_for_uniform;
   rep.threshold_after_uniform = refine_options.threshold_after_uniform;
   if (!options.uniform && options.levels > 0 && too_few_for_uniform)
