@@ -116,6 +116,17 @@ int triangles_on_edge(const Adjacency& around, const std::vector<std::array<int3
   return shared;
 }
 
+// Calls edge(a, b) for every boundary edge of `triangles` (one triangle on
+// it), a to b the way that triangle runs.
+template <class Edge>
+void for_each_boundary_edge(const std::vector<std::array<int32_t, 3>>& triangles, const Adjacency& around, Edge&& edge) {
+  for (const auto& t : triangles)
+    for (int c = 0; c < 3; ++c) {
+      const int32_t a = t[c], b = t[(c + 1) % 3];
+      if (triangles_on_edge(around, triangles, a, b) == 1) edge(a, b);
+    }
+}
+
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -371,12 +382,8 @@ class Refiner {
     double place = 0.0;
     const bool on_rim = site_on_boundary_[v] && rim_prev_[v] >= 0 && rim_next_[v] >= 0 &&
                         rim_middle(rim_prev_[v], rim_next_[v], &x, &place);
-    const int32_t loop = on_rim ? loop_[anchor_[rim_prev_[v]]] : -1;
-    const int32_t i = add_point(x, p, normal, site_on_boundary_[v]);
-    if (on_rim) {
-      loop_[i] = loop;
-      loop_pos_[i] = place;
-    }
+    const int32_t i =
+        add_point(x, p, normal, site_on_boundary_[v], on_rim ? loop_[anchor_[rim_prev_[v]]] : -1, place);
     ++midpoint_vertices_;
     return take(v, i);
   }
@@ -463,7 +470,7 @@ class Refiner {
             const int32_t loop = loop_[i];
             if (loop >= 0 && loop_[other] == loop) {  // neighbours along the loop, one way or the other
               const double size = static_cast<double>(loop_walk_[loop].size());
-              const bool forward = std::fmod(loop_pos_[other] - loop_pos_[i] + size, size) == 1.0;
+              const bool forward = along_loop(i, other) == 1.0;
               out.loop = loop;
               out.loop_pos = forward ? loop_pos_[i] + along : std::fmod(loop_pos_[other] + 1.0 - along, size);
               if (out.loop_pos >= size) out.loop_pos -= size;
@@ -512,13 +519,10 @@ class Refiner {
     site_on_boundary_ = boundary_vertices(n, triangles_);
     rim_prev_.assign(n, -1);
     rim_next_.assign(n, -1);
-    for (const auto& t : triangles_)
-      for (int c = 0; c < 3; ++c) {
-        const int32_t a = t[c], b = t[(c + 1) % 3];
-        if (triangles_on_edge(around_, triangles_, a, b) != 1) continue;
-        rim_next_[a] = rim_next_[a] == -1 ? b : -2;  // -2: a vertex where boundaries touch
-        rim_prev_[b] = rim_prev_[b] == -1 ? a : -2;
-      }
+    for_each_boundary_edge(triangles_, around_, [&](int32_t a, int32_t b) {
+      rim_next_[a] = rim_next_[a] == -1 ? b : -2;  // -2: a vertex where boundaries touch
+      rim_prev_[b] = rim_prev_[b] == -1 ? a : -2;
+    });
     // The coarser levels' meshes too: sites of every level move, and each
     // level's mesh must stay unfolded, not only the finest.
     coarse_triangles_.resize(level);
@@ -545,13 +549,10 @@ class Refiner {
     const size_t n = input_.positions.size();
     std::vector<int32_t> next(n, -1);
     std::vector<char> irregular(n, 0), visited(n, 0);
-    for (const auto& t : input_.triangles)
-      for (int c = 0; c < 3; ++c) {
-        const int32_t a = t[c], b = t[(c + 1) % 3];
-        if (triangles_on_edge(input_around_, input_.triangles, a, b) != 1) continue;
-        if (next[a] >= 0) irregular[a] = 1;
-        next[a] = b;
-      }
+    for_each_boundary_edge(input_.triangles, input_around_, [&](int32_t a, int32_t b) {
+      if (next[a] >= 0) irregular[a] = 1;
+      next[a] = b;
+    });
     loop_.assign(n, -1);
     loop_pos_.assign(n, 0.0);
     for (size_t start = 0; start < n; ++start) {
@@ -574,6 +575,19 @@ class Refiner {
     }
   }
 
+  // How far along their loop (in its vertices) point `to` comes after point
+  // `from`, in [0, length); both on one loop.
+  double along_loop(int32_t from, int32_t to) const {
+    const double size = static_cast<double>(loop_walk_[loop_[from]].size());
+    return std::fmod(loop_pos_[to] - loop_pos_[from] + size, size);
+  }
+  // ... and to the point after it along the loop, a full turn when it is
+  // `from` itself.
+  double arc_length(int32_t from, int32_t to) const {
+    const double d = along_loop(from, to);
+    return d == 0.0 ? static_cast<double>(loop_walk_[loop_[from]].size()) : d;
+  }
+
   // The point of the input's boundary halfway along the loop from a's
   // point to b's (sites on one loop, in the loop's order), with its loop
   // place; false when their order is not known.
@@ -581,10 +595,7 @@ class Refiner {
     const int32_t pa = anchor_[a], pb = anchor_[b];
     if (pa < 0 || pb < 0 || loop_[pa] < 0 || loop_[pb] != loop_[pa]) return false;
     const std::vector<int32_t>& walk = loop_walk_[loop_[pa]];
-    const double size = static_cast<double>(walk.size());
-    double span = std::fmod(loop_pos_[pb] - loop_pos_[pa] + size, size);
-    if (span == 0.0) span = size;
-    *place = std::fmod(loop_pos_[pa] + 0.5 * span, size);
+    *place = std::fmod(loop_pos_[pa] + 0.5 * arc_length(pa, pb), static_cast<double>(walk.size()));
     const size_t k = static_cast<size_t>(*place);
     const double t = *place - static_cast<double>(k);
     *x = (1.0 - t) * points_[walk[k % walk.size()]] + t * points_[walk[(k + 1) % walk.size()]];
@@ -605,13 +616,10 @@ class Refiner {
     if (ap < 0 || an < 0) return true;
     const int32_t loop = loop_[ap];
     if (loop < 0 || loop_[an] != loop) return true;
-    const double size = static_cast<double>(loop_walk_[loop].size());
-    auto after_p = [&](int32_t x) { return std::fmod(loop_pos_[x] - loop_pos_[ap] + size, size); };
-    double span = after_p(an);
-    if (span == 0.0) span = size;
+    const double span = arc_length(ap, an);
     auto inside = [&](int32_t x) {
       if (loop_[x] != loop) return false;
-      const double d = after_p(x);
+      const double d = along_loop(ap, x);
       return d > 0.0 && d < span;
     };
     const int32_t own = anchor_[s];
@@ -828,9 +836,6 @@ class Refiner {
       if (moved == 0) break;
     }
   }
-
-  // Edge (a, b) of the current level's mesh has one triangle.
-  bool boundary_edge(int32_t a, int32_t b) const { return triangles_on_edge(around_, triangles_, a, b) == 1; }
 
   // The triangle of the current level's mesh across edge (c, c + 1) of
   // triangle t, or -1 on the boundary.
@@ -1244,13 +1249,8 @@ class Refiner {
     for (int32_t s : patch) {
       std::array<int32_t, 2> along{-1, -1};
       if (site_on_boundary_[s]) {
-        int found = 0;
-        for (const int32_t* n = neighbors_.begin(s); n != neighbors_.end(s); ++n)
-          if (site_on_boundary_[*n] && boundary_edge(s, *n)) {
-            if (found < 2) along[found] = *n;
-            ++found;
-          }
-        if (found != 2) continue;  // a corner where boundary loops touch: stays
+        if (rim_prev_[s] < 0 || rim_next_[s] < 0) continue;  // a corner where boundary loops touch: stays
+        along = {rim_prev_[s], rim_next_[s]};
       } else if (neighbors_.begin(s) == neighbors_.end(s)) {
         continue;
       }
@@ -1275,12 +1275,9 @@ class Refiner {
     const size_t points_before = points_.size();
     auto apply = [&] {
       for (size_t j = 0; j < movable.size(); ++j) {
-        const int32_t k = add_point(x[j], param_[on[j].vertex], on[j].normal, rim[j][0] >= 0);
-        if (rim[j][0] >= 0 && x[j] == on[j].x) {
-          loop_[k] = on[j].loop;
-          loop_pos_[k] = on[j].loop_pos;
-        }
-        move_site(movable[j], k);
+        const bool on_loop = rim[j][0] >= 0 && x[j] == on[j].x;
+        move_site(movable[j], add_point(x[j], param_[on[j].vertex], on[j].normal, rim[j][0] >= 0,
+                                        on_loop ? on[j].loop : -1, on[j].loop_pos));
       }
     };
     auto undo = [&] {
@@ -1324,15 +1321,17 @@ class Refiner {
   // A point that is not an input vertex (an edge midpoint, or an untangled
   // site): it joins the points with no density, so Lloyd's centroids ignore
   // it, and no site on it yet.
-  int32_t add_point(const Eigen::Vector3d& x, const ParamPoint& p, const Eigen::Vector3d& normal, char boundary) {
+  // `loop`, `place`: on the input's boundary, where along it (loop_).
+  int32_t add_point(const Eigen::Vector3d& x, const ParamPoint& p, const Eigen::Vector3d& normal, char boundary,
+                    int32_t loop = -1, double place = 0.0) {
     points_.push_back(x);
     param_.push_back(p);
     density_.push_back(0.0);
     normals_.push_back(normal);
     site_of_.push_back(-1);
     input_on_boundary_.push_back(boundary);
-    loop_.push_back(-1);
-    loop_pos_.push_back(0.0);
+    loop_.push_back(loop);
+    loop_pos_.push_back(place);
     return static_cast<int32_t>(points_.size() - 1);
   }
   void drop_last_point() {
