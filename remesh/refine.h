@@ -72,6 +72,7 @@ struct RefineLevelReport {
   // degrees (folded onto each other, whichever way they face).
   size_t pleats = 0;
   size_t untangled = 0;  // sites moved by the Laplacian untangling after Lloyd
+  size_t spikes_mended = 0;  // sites brought back from another sheet, after the repairs (mend_spikes)
   // New vertices put at their parent edge's midpoint because no free input
   // vertex was near: the input is too coarse there (oversample more).
   size_t midpoint_vertices = 0;

@@ -82,6 +82,7 @@ Status run_remesh(const RemeshCliOptions& o) {
             .field("smoothed", lr.smoothed)
             .field("midpoint_resets", lr.midpoint_resets)
             .field("reparameterized", lr.reparameterized)
+            .field("spikes_mended", lr.spikes_mended)
             .field("empty_cells", lr.empty_cells);
       }
       level_json.push_back(j);
