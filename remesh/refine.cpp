@@ -741,7 +741,7 @@ class Refiner {
   // Returns the sites moved.
   size_t mend_spikes() {
     constexpr double kSpikeRatio = 3.0;
-    constexpr size_t kCandidates = 48, kCoverChecks = 8;
+    constexpr size_t kCandidates = 48, kCoverChecks = 8, kMaxCovered = 8192;
     const int32_t sites = static_cast<int32_t>(neighbors_.size());
     auto in_mesh = [&](int32_t s) { return neighbors_.begin(s) != neighbors_.end(s); };
     std::vector<double> edge(sites, 0.0);
@@ -801,6 +801,12 @@ class Refiner {
         reach = std::max(reach, (points_[anchor_[*n]] - points_[from]).squaredNorm());
       reached.clear();
       input_tree_.radiusSearch(points_[from].data(), reach, reached, nanoflann::SearchParams());
+      if (reached.size() > kMaxCovered) {  // a spike across the model: every so many, nearest first
+        const size_t stride = (reached.size() + kMaxCovered - 1) / kMaxCovered;
+        size_t kept = 0;
+        for (size_t j = 0; j < reached.size(); j += stride) reached[kept++] = reached[j];
+        reached.resize(kept);
+      }
       cover.resize(reached.size());
       for (size_t j = 0; j < reached.size(); ++j)
         cover[j] = std::max(0.0625 * median * median, 4.0 * to_remesh(points_[reached[j].first], s, from));
