@@ -35,76 +35,11 @@
 #include "remesh/adjacency.h"
 #include "remesh/density.h"
 #include "remesh/disk_map.h"
+#include "remesh/geometry.h"
 #include "remesh/point_cloud.h"
 
 namespace srcodec {
 namespace {
-
-std::vector<Eigen::Vector3d> unit_vertex_normals(const TriangleMesh& mesh) {
-  std::vector<Eigen::Vector3d> n(mesh.positions.size(), Eigen::Vector3d::Zero());
-  for (const auto& t : mesh.triangles) {
-    const Eigen::Vector3d fn =
-        (mesh.positions[t[1]] - mesh.positions[t[0]]).cross(mesh.positions[t[2]] - mesh.positions[t[0]]);
-    for (int32_t v : t) n[v] += fn;
-  }
-  for (Eigen::Vector3d& x : n) {
-    const double len = x.norm();
-    if (len > 0.0) x /= len;
-  }
-  return n;
-}
-
-// Per vertex: 1 when it is on an edge that only one triangle uses.
-std::vector<char> boundary_vertices(size_t n, const std::vector<std::array<int32_t, 3>>& triangles) {
-  std::vector<std::pair<int32_t, int32_t>> edges;
-  edges.reserve(3 * triangles.size());
-  for (const auto& t : triangles)
-    for (int c = 0; c < 3; ++c) edges.emplace_back(std::minmax(t[c], t[(c + 1) % 3]));
-  std::sort(edges.begin(), edges.end());
-  std::vector<char> on(n, 0);
-  for (size_t i = 0; i < edges.size();) {
-    size_t j = i;
-    while (j < edges.size() && edges[j] == edges[i]) ++j;
-    if (j - i == 1) on[edges[i].first] = on[edges[i].second] = 1;
-    i = j;
-  }
-  return on;
-}
-
-// The point of triangle abc nearest to p (by the triangle's Voronoi regions:
-// a vertex, an edge or the inside).
-Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                    const Eigen::Vector3d& c) {
-  const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0.0 && d2 <= 0.0) return a;
-  const Eigen::Vector3d bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0.0 && d4 <= d3) return b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + ab * (d1 / (d1 - d3));
-  const Eigen::Vector3d cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0.0 && d5 <= d6) return c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + ac * (d2 / (d2 - d6));
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-  const double denom = va + vb + vc;
-  if (!(std::abs(denom) > 0.0)) return a;
-  return a + ab * (vb / denom) + ac * (vc / denom);
-}
-
-// The barycentric coordinates of q, a point of triangle abc, in it (a
-// third each for a triangle with no area).
-Eigen::Vector3d barycentric(const Eigen::Vector3d& q, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                            const Eigen::Vector3d& c) {
-  const Eigen::Vector3d n = (b - a).cross(c - a);
-  const double area = n.squaredNorm();
-  if (!(area > 0.0)) return Eigen::Vector3d::Constant(1.0 / 3.0);
-  const double u = (c - b).cross(q - b).dot(n) / area, v = (a - c).cross(q - c).dot(n) / area;
-  return Eigen::Vector3d(u, v, 1.0 - u - v);
-}
 
 // The triangles of `triangles` around vertex a (`around`: vertex_triangles)
 // that also use vertex b: 1 on a boundary edge, 2 inside, 0 if ab is no edge.
@@ -145,7 +80,7 @@ class Refiner {
         points_(input.positions),
         param_(base.param),
         density_(vertex_density(input)),
-        normals_(unit_vertex_normals(input)),
+        normals_(unit_vertex_normals(input.positions, input.triangles)),
         embedded_(embed()),
         cloud_{embedded_},
         tree_(3, cloud_, nanoflann::KDTreeSingleIndexAdaptorParams(10)),

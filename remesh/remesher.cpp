@@ -7,6 +7,7 @@
 
 #include "remesh/base_mesh.h"
 #include "remesh/components.h"
+#include "remesh/geometry.h"
 #include "remesh/lbg_sites.h"
 
 namespace srcodec {
@@ -315,6 +316,20 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
   std::vector<Eigen::Vector3d> positions = std::move(refined.positions);
   for (size_t b = 0; b < base.mesh.positions.size(); ++b) base.mesh.positions[b] = positions[b];  // Lloyd moved them
   const int32_t levels = static_cast<int32_t>(rep.levels.size());
+  if (options.fit_surface && levels > 0) {
+    std::vector<std::vector<std::array<int32_t, 3>>> level_triangles;
+    for (int32_t l = 0; l <= levels; ++l) level_triangles.push_back(refined.hierarchy.level_triangles(l));
+    // Base vertices stay input vertices (the paper's sites); boundary
+    // vertices stay on the input's boundary.
+    std::vector<char> fixed = boundary_vertices(positions.size(), level_triangles.back());
+    std::fill(fixed.begin(), fixed.begin() + static_cast<std::ptrdiff_t>(base.mesh.positions.size()), 1);
+    rep.fit = fit_to_surface(mesh, input, level_triangles, fixed, &positions);
+    progress("fit: " + std::to_string(rep.fit.moved) + " vertices moved off the input (mean " +
+             std::to_string(rep.fit.mean_offset) + "), " + std::to_string(rep.fit.refused) +
+             " moves undone where a triangle would turn, fold or pleat; then " +
+             std::to_string(rep.fit.folded_by_nearest_input) + " folded (recount), " + std::to_string(rep.fit.pleats) +
+             " pleats, " + std::to_string(rep.fit.seconds) + " s");
+  }
   return SemiRegularMesh{std::move(base.mesh), std::move(refined.hierarchy), std::move(positions), levels};
 }
 

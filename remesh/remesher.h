@@ -11,6 +11,7 @@
 
 #include "format/mesh.h"
 #include "format/status.h"
+#include "remesh/fit.h"
 #include "remesh/oversample.h"
 #include "remesh/refine.h"
 #include "remesh/semi_regular_mesh.h"
@@ -37,6 +38,12 @@ struct RemeshOptions {
   int oversample = -1;     // Butterfly/Loop steps 0..3; -1 = auto, per component (remesher.cpp)
   OversampleScheme scheme = OversampleScheme::kButterfly;
   int max_lloyd_iterations = 10;  // per refinement level
+  // After the refinement, move the vertices above the base mesh off the
+  // input's vertices, along their normals, to centre the finest level's
+  // triangles on the input surface (remesh/fit.h; ours). Boundary vertices
+  // stay. Off: every vertex where the paper's method put it (a site on an
+  // input vertex, with the exceptions RefineLevelReport counts).
+  bool fit_surface = true;
   std::function<void(const std::string&)> progress;  // one line per stage, may be empty
 };
 
@@ -53,6 +60,7 @@ struct RemeshReport {
   bool threshold_after_uniform = false;
   double seconds_oversample = 0.0, seconds_sites = 0.0, seconds_base = 0.0, seconds_refine = 0.0;
   std::vector<RefineLevelReport> levels;
+  FitReport fit;  // with RemeshOptions::fit_surface
 };
 
 // The default base size: the larger the base mesh, the less the

@@ -108,6 +108,12 @@ Status run_remesh(const RemeshCliOptions& o) {
         .field("threshold", options.threshold)
         .field("threshold_after_uniform", report.threshold_after_uniform)
         .field("tolerance_db", options.tolerance_db)
+        .field("fit_surface", options.fit_surface)
+        .field("fit_moved", report.fit.moved)
+        .field("fit_refused", report.fit.refused)
+        .field("fit_mean_offset", report.fit.mean_offset)
+        .field("fit_folded_by_nearest_input", report.fit.folded_by_nearest_input)
+        .field("fit_pleats", report.fit.pleats)
         .field("seconds", seconds)
         .array("levels", level_json);
     std::cout << j.str() << "\n";

@@ -26,6 +26,10 @@ void add_remesh_flags(CLI::App* cmd, RemeshFlags& f) {
                   "or --threshold")
       ->check(kFiniteNumber)
       ->check(CLI::Range(1.0, 300.0));
+  cmd->add_flag("!--no-fit-surface", f.fit_surface,
+                "Leave every vertex where the remeshing put it (on the input's vertices, as in the paper): by "
+                "default the vertices above the base mesh then move along their normals to centre the finest "
+                "level's triangles on the input surface (boundary vertices stay)");
   cmd->add_option("--oversample", f.oversample, "Subdivision steps before remeshing: auto, 0, 1, 2 or 3")
       ->capture_default_str();
   cmd->add_option("--scheme", f.scheme, "Oversampling scheme: butterfly, loop, or linear (keeps the input's facets)")->capture_default_str();
@@ -44,6 +48,7 @@ StatusOr<RemeshOptions> to_remesh_options(const RemeshFlags& o) {
   r.uniform = o.uniform || o.threshold < 0.0;
   r.threshold = std::max(o.threshold, 0.0);
   r.tolerance_db = o.tolerance_db;
+  r.fit_surface = o.fit_surface;
   if (o.oversample == "auto") {
     r.oversample = -1;
   } else if (o.oversample.size() == 1 && o.oversample[0] >= '0' && o.oversample[0] <= '3') {

@@ -1,0 +1,228 @@
+#include "remesh/fit.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <nanoflann.hpp>
+
+#include "remesh/geometry.h"
+#include "remesh/point_cloud.h"
+
+namespace srcodec {
+namespace {
+
+// SplitMix64: the same samples on every platform (std's distributions are
+// not specified bit for bit).
+struct SplitMix64 {
+  uint64_t state;
+  uint64_t next() {
+    uint64_t z = (state += 0x9E3779B97F4A7C15ULL);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    return z ^ (z >> 31);
+  }
+  double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
+};
+
+std::vector<Eigen::Vector3d> surface_samples(const TriangleMesh& mesh, size_t count, uint64_t seed) {
+  std::vector<double> cumulative(mesh.triangles.size());
+  double total = 0.0;
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto& tri = mesh.triangles[t];
+    total += 0.5 * (mesh.positions[tri[1]] - mesh.positions[tri[0]]).cross(mesh.positions[tri[2]] - mesh.positions[tri[0]]).norm();
+    cumulative[t] = total;
+  }
+  std::vector<Eigen::Vector3d> out;
+  if (!(total > 0.0)) return out;
+  out.reserve(count);
+  SplitMix64 rng{seed};
+  for (size_t k = 0; k < count; ++k) {
+    const double at = rng.uniform() * total;
+    const size_t t = std::min<size_t>(std::upper_bound(cumulative.begin(), cumulative.end(), at) - cumulative.begin(),
+                                      cumulative.size() - 1);
+    const double r1 = std::sqrt(rng.uniform()), r2 = rng.uniform();
+    const auto& tri = mesh.triangles[t];
+    out.push_back((1.0 - r1) * mesh.positions[tri[0]] + r1 * (1.0 - r2) * mesh.positions[tri[1]] +
+                  r1 * r2 * mesh.positions[tri[2]]);
+  }
+  return out;
+}
+
+Eigen::Vector3d triangle_normal(const std::vector<Eigen::Vector3d>& p, const std::array<int32_t, 3>& t) {
+  return (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]);
+}
+
+}  // namespace
+
+FitReport fit_to_surface(const TriangleMesh& input, const TriangleMesh& sides,
+                         const std::vector<std::vector<std::array<int32_t, 3>>>& levels, const std::vector<char>& fixed,
+                         std::vector<Eigen::Vector3d>* positions, const FitOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  FitReport report;
+  if (levels.empty() || levels.back().empty()) return report;
+  const auto& fine = levels.back();
+  std::vector<Eigen::Vector3d>& x = *positions;
+  const size_t n = x.size();
+  const std::vector<Eigen::Vector3d> samples = surface_samples(input, options.samples_per_vertex * n, options.seed);
+  // A corner's side of the surface: the normal of the vertex of `sides`
+  // nearest it (as the fold recount judges corners off the input).
+  const std::vector<Eigen::Vector3d> side_normals = unit_vertex_normals(sides.positions, sides.triangles);
+  PointCloud side_cloud{sides.positions};
+  PointTree side_tree(3, side_cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+  side_tree.buildIndex();
+  auto side_at = [&](const Eigen::Vector3d& p) {
+    uint32_t i = 0;
+    double d2 = 0.0;
+    return side_tree.knnSearch(p.data(), 1, &i, &d2) == 1 ? side_normals[i] : Eigen::Vector3d::Zero().eval();
+  };
+  std::vector<Eigen::Vector3d> side(n);
+  for (size_t v = 0; v < n; ++v) side[v] = side_at(x[v]);
+  auto faces_out = [&](const std::vector<Eigen::Vector3d>& p, const std::vector<Eigen::Vector3d>& s,
+                       const std::array<int32_t, 3>& t) {
+    return triangle_normal(p, t).dot(s[t[0]] + s[t[1]] + s[t[2]]) > 0.0;
+  };
+  // Neighbouring triangles of the finest level, and whether they meet at
+  // more than 150 degrees (a pleat, as RefineLevelReport::pleats).
+  std::vector<std::array<int32_t, 3>> edges;  // lower vertex, higher vertex, triangle
+  edges.reserve(3 * fine.size());
+  for (size_t t = 0; t < fine.size(); ++t)
+    for (int c = 0; c < 3; ++c) {
+      const auto [a, b] = std::minmax(fine[t][c], fine[t][(c + 1) % 3]);
+      edges.push_back({a, b, static_cast<int32_t>(t)});
+    }
+  std::sort(edges.begin(), edges.end());
+  std::vector<std::pair<int32_t, int32_t>> neighbours;
+  for (size_t i = 0; i + 1 < edges.size(); ++i)
+    if (edges[i][0] == edges[i + 1][0] && edges[i][1] == edges[i + 1][1])
+      neighbours.emplace_back(edges[i][2], edges[i + 1][2]);
+  auto pleated = [&](const std::vector<Eigen::Vector3d>& p, int32_t t, int32_t u) {
+    constexpr double kCos150 = -0.86602540378443865;
+    const Eigen::Vector3d nt = triangle_normal(p, fine[t]), nu = triangle_normal(p, fine[u]);
+    return nt.dot(nu) < kCos150 * nt.norm() * nu.norm();
+  };
+  std::vector<int32_t> owner(samples.size());
+  std::vector<Eigen::Vector3d> weight(samples.size());
+  std::vector<double> offset_of(samples.size());
+  std::vector<Eigen::Vector3d> centroids(fine.size());
+  for (int iteration = 0; iteration < options.iterations; ++iteration) {
+    for (size_t t = 0; t < fine.size(); ++t) centroids[t] = (x[fine[t][0]] + x[fine[t][1]] + x[fine[t][2]]) / 3.0;
+    PointCloud cloud{centroids};
+    PointTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+    tree.buildIndex();
+    // Each sample's nearest triangle (among those with the nearest
+    // centroids), where on it, and its signed distance from it.
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, samples.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+      constexpr size_t kNear = 10;
+      std::array<uint32_t, kNear> idx{};
+      std::array<double, kNear> d2{};
+      for (size_t i = r.begin(); i != r.end(); ++i) {
+        const Eigen::Vector3d& q = samples[i];
+        const size_t k = tree.knnSearch(q.data(), kNear, idx.data(), d2.data());
+        double best = std::numeric_limits<double>::infinity();
+        int32_t best_t = -1;
+        Eigen::Vector3d best_c;
+        for (size_t j = 0; j < k; ++j) {
+          const auto& tri = fine[idx[j]];
+          const Eigen::Vector3d c = closest_on_triangle(q, x[tri[0]], x[tri[1]], x[tri[2]]);
+          const double d = (c - q).squaredNorm();
+          if (d < best) {
+            best = d;
+            best_t = static_cast<int32_t>(idx[j]);
+            best_c = c;
+          }
+        }
+        owner[i] = best_t;
+        if (best_t < 0) continue;
+        const auto& tri = fine[best_t];
+        const Eigen::Vector3d normal = triangle_normal(x, tri);
+        const double len = normal.norm();
+        if (!(len > 0.0)) {
+          owner[i] = -1;
+          continue;
+        }
+        weight[i] = barycentric(best_c, x[tri[0]], x[tri[1]], x[tri[2]]).cwiseMax(0.0);
+        offset_of[i] = (q - best_c).dot(normal) / len;
+      }
+    });
+    std::vector<double> sum(n, 0.0), mass(n, 0.0);
+    for (size_t i = 0; i < samples.size(); ++i) {
+      if (owner[i] < 0) continue;
+      for (int c = 0; c < 3; ++c) {
+        const int32_t v = fine[owner[i]][c];
+        sum[v] += weight[i][c] * offset_of[i];
+        mass[v] += weight[i][c];
+      }
+    }
+    const std::vector<Eigen::Vector3d> normals = unit_vertex_normals(x, fine);
+    const std::vector<Eigen::Vector3d> before = x, side_before = side;
+    std::vector<char> moved(n, 0);
+    // A move is at most a quarter of the vertex's mean edge: a chord's sag
+    // is an eighth of its length where the surface turns by a radian along
+    // it; farther input is a part the remesh does not cover, not a sag.
+    std::vector<double> edge_sum(n, 0.0), edge_count(n, 0.0);
+    for (const auto& t : fine)
+      for (int c = 0; c < 3; ++c) {
+        const double len = (x[t[c]] - x[t[(c + 1) % 3]]).norm();
+        edge_sum[t[c]] += len;
+        edge_count[t[c]] += 1.0;
+      }
+    for (size_t v = 0; v < n; ++v) {
+      if ((v < fixed.size() && fixed[v]) || !(mass[v] > 0.0) || normals[v].isZero()) continue;
+      const double reach = 0.25 * edge_sum[v] / edge_count[v];
+      x[v] += std::clamp(options.step * sum[v] / mass[v], -reach, reach) * normals[v];
+      side[v] = side_at(x[v]);
+      moved[v] = 1;
+    }
+    // Undo the moves around any triangle (of any level) that would turn by
+    // 60 degrees or more, or come to face against the input, and around
+    // two neighbours that would pleat, until none does.
+    auto undo = [&](const std::array<int32_t, 3>& tri) {
+      bool any = false;
+      for (int32_t v : tri)
+        if (moved[v]) {
+          x[v] = before[v];
+          side[v] = side_before[v];
+          moved[v] = 0;
+          ++report.refused;
+          any = true;
+        }
+      return any;
+    };
+    for (bool changed = true; changed;) {
+      changed = false;
+      for (const auto& [t, u] : neighbours) {
+        const auto &a = fine[t], &b = fine[u];
+        if (!moved[a[0]] && !moved[a[1]] && !moved[a[2]] && !moved[b[0]] && !moved[b[1]] && !moved[b[2]]) continue;
+        if (pleated(x, t, u) && !pleated(before, t, u)) changed |= undo(a) | undo(b);
+      }
+      for (size_t k = 0; k < levels.size(); ++k)
+        for (const auto& tri : levels[k]) {
+          if (!moved[tri[0]] && !moved[tri[1]] && !moved[tri[2]]) continue;
+          const Eigen::Vector3d was = triangle_normal(before, tri), now = triangle_normal(x, tri);
+          if (now.dot(was) > 0.5 * now.norm() * was.norm() &&
+              (faces_out(x, side, tri) || !faces_out(before, side_before, tri)))
+            continue;
+          changed |= undo(tri);
+        }
+    }
+    report.moved = 0;
+    double total = 0.0;
+    for (size_t v = 0; v < n; ++v)
+      if (moved[v]) {
+        ++report.moved;
+        total += (x[v] - before[v]).norm();
+      }
+    report.mean_offset = report.moved ? total / static_cast<double>(report.moved) : 0.0;
+  }
+  for (const auto& tri : fine) report.folded_by_nearest_input += !faces_out(x, side, tri);
+  for (const auto& [t, u] : neighbours) report.pleats += pleated(x, t, u);
+  report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return report;
+}
+
+}  // namespace srcodec

@@ -1,0 +1,30 @@
+// Small geometric helpers the refinement and the fit share.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace srcodec {
+
+// Per vertex: the unit area-weighted normal of the triangles around it (zero
+// where they have no area).
+std::vector<Eigen::Vector3d> unit_vertex_normals(const std::vector<Eigen::Vector3d>& positions,
+                                                 const std::vector<std::array<int32_t, 3>>& triangles);
+
+// Per vertex (of n): 1 when it is on an edge that only one triangle uses.
+std::vector<char> boundary_vertices(size_t n, const std::vector<std::array<int32_t, 3>>& triangles);
+
+// The point of triangle abc nearest to p (by the triangle's Voronoi regions:
+// a vertex, an edge or the inside).
+Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                    const Eigen::Vector3d& c);
+
+// The barycentric coordinates of q, a point of triangle abc, in it (a
+// third each for a triangle with no area).
+Eigen::Vector3d barycentric(const Eigen::Vector3d& q, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                            const Eigen::Vector3d& c);
+
+}  // namespace srcodec
