@@ -10,24 +10,12 @@
 #include <limits>
 #include <nanoflann.hpp>
 
+#include "format/split_mix64.h"
 #include "remesh/geometry.h"
 #include "remesh/point_cloud.h"
 
 namespace srcodec {
 namespace {
-
-// SplitMix64: the same samples on every platform (std's distributions are
-// not specified bit for bit).
-struct SplitMix64 {
-  uint64_t state;
-  uint64_t next() {
-    uint64_t z = (state += 0x9E3779B97F4A7C15ULL);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    return z ^ (z >> 31);
-  }
-  double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
-};
 
 std::vector<Eigen::Vector3d> surface_samples(const TriangleMesh& mesh, size_t count, uint64_t seed) {
   std::vector<double> cumulative(mesh.triangles.size());
@@ -40,7 +28,7 @@ std::vector<Eigen::Vector3d> surface_samples(const TriangleMesh& mesh, size_t co
   std::vector<Eigen::Vector3d> out;
   if (!(total > 0.0)) return out;
   out.reserve(count);
-  SplitMix64 rng{seed};
+  SplitMix64 rng(seed);  // the same samples on every platform
   for (size_t k = 0; k < count; ++k) {
     const double at = rng.uniform() * total;
     const size_t t = std::min<size_t>(std::upper_bound(cumulative.begin(), cumulative.end(), at) - cumulative.begin(),
