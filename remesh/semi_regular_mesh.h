@@ -22,6 +22,9 @@ struct SemiRegularMesh {
   // (oversampled) input the remesher ran on, except where the input is sparse
   // (then a point of the input surface) or ran out (an edge midpoint), and a
   // few sites moved to untangle folds; RefineLevelReport counts each kind.
+  // With RemeshOptions::fit_surface (the default) the vertices above the
+  // base mesh, but for the boundary's, then leave them along their normals
+  // (remesh/fit.h); base vertices stay where the sites are.
   std::vector<Eigen::Vector3d> positions;
   int32_t levels = 0;  // the finest level built (hierarchy.max_level() may be lower if nothing was split)
 
