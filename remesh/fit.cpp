@@ -52,7 +52,7 @@ FitReport fit_to_surface(const TriangleMesh& input, const TriangleMesh& sides,
                          std::vector<Eigen::Vector3d>* positions, const FitOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   FitReport report;
-  if (levels.empty() || levels.back().empty()) return report;
+  if (levels.empty() || levels.back().empty() || sides.positions.empty()) return report;
   const auto& fine = levels.back();
   std::vector<Eigen::Vector3d>& x = *positions;
   const size_t n = x.size();

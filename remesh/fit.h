@@ -28,7 +28,7 @@ struct FitOptions {
 
 struct FitReport {
   size_t moved = 0;    // vertices moved in the last iteration
-  size_t refused = 0;  // moves undone because a triangle of some level would turn over, summed
+  size_t refused = 0;  // moves undone because a triangle of some level would turn, fold or pleat, summed
   double mean_offset = 0.0;  // mean |move| of the moved vertices in the last iteration
   // The finest level after the fit: triangles facing against the input
   // (corners judged by the nearest vertex of `sides`, as
