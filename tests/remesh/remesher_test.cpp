@@ -535,8 +535,8 @@ TEST(Remesher, TooManyLevelsForTheInputSaysWhatWouldWork) {
   EXPECT_NE(srm.status().message().find("oversample"), std::string::npos) << srm.status().message();
 }
 
-// Interior vertices whose edges are on average more than `ratio` times as
-// long as their neighbours' (median): spikes.
+// Vertices whose edges are on average more than `ratio` times as long as
+// their neighbours' (median): spikes.
 size_t spike_vertices(const TriangleMesh& m, double ratio) {
   std::vector<std::set<int32_t>> neighbours(m.positions.size());
   for (const auto& t : m.triangles)
@@ -563,7 +563,7 @@ size_t spike_vertices(const TriangleMesh& m, double ratio) {
 // The bunny at 5 levels (base of 150 vertices): three sites between its
 // ears took input vertices on the other ear's sheet while their neighbours
 // stayed on this one, and their long triangles held 61% of the error (74.9
-// dB); mend_spikes brings them back (79.4 dB).
+// dB by `srcodec remesh`); mend_spikes brings them back (79.4 dB).
 TEST(Remesher, BunnyEarsHaveNoSpikes) {
   if (!test::have_corpus()) GTEST_SKIP() << "corpus not found";
   auto input = read_triangle_mesh(test::corpus_path("stanford-bunny.obj"));
