@@ -6,10 +6,10 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <limits>
 #include <nanoflann.hpp>
 
+#include "format/area_sampling.h"
 #include "format/split_mix64.h"
 #include "remesh/geometry.h"
 #include "remesh/point_cloud.h"
@@ -33,10 +33,8 @@ std::vector<Eigen::Vector3d> surface_samples(const TriangleMesh& mesh, size_t co
     const double at = rng.uniform() * total;
     const size_t t = std::min<size_t>(std::upper_bound(cumulative.begin(), cumulative.end(), at) - cumulative.begin(),
                                       cumulative.size() - 1);
-    const double r1 = std::sqrt(rng.uniform()), r2 = rng.uniform();
     const auto& tri = mesh.triangles[t];
-    out.push_back((1.0 - r1) * mesh.positions[tri[0]] + r1 * (1.0 - r2) * mesh.positions[tri[1]] +
-                  r1 * r2 * mesh.positions[tri[2]]);
+    out.push_back(point_in_triangle(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]], rng));
   }
   return out;
 }
@@ -72,7 +70,7 @@ FitReport fit_to_surface(const TriangleMesh& input, const TriangleMesh& sides,
   for (size_t v = 0; v < n; ++v) side[v] = side_at(x[v]);
   auto faces_out = [&](const std::vector<Eigen::Vector3d>& p, const std::vector<Eigen::Vector3d>& s,
                        const std::array<int32_t, 3>& t) {
-    return triangle_normal(p, t).dot(s[t[0]] + s[t[1]] + s[t[2]]) > 0.0;
+    return facing(p[t[0]], p[t[1]], p[t[2]], s[t[0]] + s[t[1]] + s[t[2]]) > 1e-9;  // not folded
   };
   // Neighbouring triangles of the finest level, and whether they meet at
   // more than 150 degrees (a pleat, as RefineLevelReport::pleats).
@@ -89,9 +87,7 @@ FitReport fit_to_surface(const TriangleMesh& input, const TriangleMesh& sides,
     if (edges[i][0] == edges[i + 1][0] && edges[i][1] == edges[i + 1][1])
       neighbours.emplace_back(edges[i][2], edges[i + 1][2]);
   auto pleated = [&](const std::vector<Eigen::Vector3d>& p, int32_t t, int32_t u) {
-    constexpr double kCos150 = -0.86602540378443865;
-    const Eigen::Vector3d nt = triangle_normal(p, fine[t]), nu = triangle_normal(p, fine[u]);
-    return nt.dot(nu) < kCos150 * nt.norm() * nu.norm();
+    return pleat(triangle_normal(p, fine[t]), triangle_normal(p, fine[u]));
   };
   std::vector<int32_t> owner(samples.size());
   std::vector<Eigen::Vector3d> weight(samples.size());

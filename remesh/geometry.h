@@ -27,4 +27,15 @@ Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vecto
 Eigen::Vector3d barycentric(const Eigen::Vector3d& q, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                             const Eigen::Vector3d& c);
 
+// How triangle p0 p1 p2 faces along `reference` (a sum of unit normals at
+// its corners): its normal's dot product with it, over |reference| and the
+// triangle's squared edge lengths; 0 with no reference or no edges. A
+// triangle is folded when this is not above 1e-9.
+double facing(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2,
+              const Eigen::Vector3d& reference);
+
+// Two neighbouring triangles, of these normals (any length), meet at more
+// than 150 degrees: a pleat.
+bool pleat(const Eigen::Vector3d& normal_t, const Eigen::Vector3d& normal_u);
+
 }  // namespace srcodec

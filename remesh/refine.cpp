@@ -907,9 +907,7 @@ class Refiner {
       const Eigen::Vector3d &p0 = points_[anchor_[tri[0]]], &p1 = points_[anchor_[tri[1]]], &p2 = points_[anchor_[tri[2]]];
       return Eigen::Vector3d((p1 - p0).cross(p2 - p0));
     };
-    constexpr double kCos150 = -0.86602540378443865;
-    const Eigen::Vector3d nt = normal(t), nu = normal(u);
-    return nt.dot(nu) < kCos150 * nt.norm() * nu.norm();
+    return pleat(normal(t), normal(u));
   }
 
   // The pleated pairs of neighbouring triangles (t < u) of the current
@@ -1417,16 +1415,8 @@ class Refiner {
   double facing(const std::array<int32_t, 3>& tri, int32_t moved, int32_t to) const {
     std::array<int32_t, 3> at{};
     for (int c = 0; c < 3; ++c) at[c] = tri[c] == moved ? to : anchor_[tri[c]];
-    return facing_of(points_[at[0]], points_[at[1]], points_[at[2]],
+    return srcodec::facing(points_[at[0]], points_[at[1]], points_[at[2]],
                      normals_[at[0]] + normals_[at[1]] + normals_[at[2]]);
-  }
-  static double facing_of(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2,
-                          const Eigen::Vector3d& reference) {
-    const Eigen::Vector3d n = (p1 - p0).cross(p2 - p0);
-    const double r = reference.norm();
-    const double scale = (p1 - p0).squaredNorm() + (p2 - p1).squaredNorm() + (p0 - p2).squaredNorm();
-    if (!(r > 0.0) || !(scale > 0.0)) return 0.0;
-    return n.dot(reference) / (r * scale);
   }
 
   // RefineLevelReport::folded_by_nearest_input for the current level's mesh.
@@ -1437,7 +1427,7 @@ class Refiner {
     }
     size_t folded = 0;
     for (const auto& t : triangles_) {
-      const double f = facing_of(points_[anchor_[t[0]]], points_[anchor_[t[1]]], points_[anchor_[t[2]]],
+      const double f = srcodec::facing(points_[anchor_[t[0]]], points_[anchor_[t[1]]], points_[anchor_[t[2]]],
                                  corner_normal[t[0]] + corner_normal[t[1]] + corner_normal[t[2]]);
       folded += !(f > 1e-9);
     }

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "format/area_sampling.h"
 #include "format/split_mix64.h"
 
 namespace srcodec {
@@ -86,14 +87,7 @@ StatusOr<Surface> make_surface(const TriangleMesh& mesh, const char* role) {
 // Area-uniform, stratified sampling: triangle i gets floor(e_i) samples plus
 // one more with probability frac(e_i), where e_i = area_i / total * n, so the
 // expected count is exactly n and every triangle is represented in proportion.
-// Within a triangle, (1 - sqrt(r1)) a + sqrt(r1) (1 - r2) b + sqrt(r1) r2 c is
-// uniform in area (Osada et al. 2002).
-Eigen::Vector3d point_in_triangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                  const Eigen::Vector3d& c, SplitMix64& rng) {
-  const double r1 = std::sqrt(rng.uniform());
-  const double r2 = rng.uniform();
-  return (1 - r1) * a + (r1 * (1 - r2)) * b + (r1 * r2) * c;
-}
+// Within a triangle, point_in_triangle (format/area_sampling.h).
 
 std::vector<Eigen::Vector3d> sample_surface(const Surface& s, size_t n, uint64_t seed) {
   SplitMix64 rng(seed);
