@@ -3,7 +3,10 @@
 our corpus: remeshing error against triangle count per level, for uniform
 refinement, adaptive refinement at several thresholds (and, ours, at geometric
 tolerances), and Butterfly against Loop oversampling (and, ours, linear: splits
-at the edges' midpoints, on the input's facets). Writes a CSV and a plot.
+at the edges' midpoints, on the input's facets). The paper's runs keep its
+positions (`--no-fit-surface`); ours ("+ fit", dashed in the plot) run with the
+defaults, which fit the finest level to the input surface. Writes a CSV and a
+plot.
 
 usage: /usr/bin/python3 tools/remesh_experiments.py [--quick] [--out docs/remesh_experiments]
   (needs build/tools/srcodec, or the binary named by $SRCODEC; python3-matplotlib; the corpus in
@@ -36,8 +39,11 @@ FULL = {
 QUICK = {"meshes": ["armadillo.obj"], "levels": 4, "thresholds": [4], "tolerances": [60],
          "scheme_meshes": ["bunny_npm.obj"]}
 
-FIELDS = ["mesh", "config", "scheme", "oversample", "threshold", "tolerance_db", "level", "vertices", "triangles",
-          "rms", "psnr", "seconds"]
+FIELDS = ["mesh", "config", "scheme", "oversample", "threshold", "tolerance_db", "fit", "level", "vertices",
+          "triangles", "rms", "psnr", "seconds"]
+# The paper's runs (uniform, Eq. 5, the oversampling schemes) keep its
+# positions: sites on input vertices, no fit to the input surface.
+PAPER = ["--no-fit-surface"]
 
 
 def run(mesh, levels, extra):
@@ -53,7 +59,8 @@ def rows_of(mesh, config, scheme, result):
     for lv in result["levels"]:
         yield {"mesh": mesh, "config": config, "scheme": scheme, "oversample": result["oversample_steps"],
                "threshold": "" if result["uniform"] else result["threshold"],
-               "tolerance_db": result.get("tolerance_db") or "", "level": lv["level"],
+               "tolerance_db": result.get("tolerance_db") or "", "fit": int(result.get("fit_surface", False)),
+               "level": lv["level"],
                "vertices": lv["vertices"], "triangles": lv["triangles"], "rms": lv["rms"], "psnr": lv["psnr"],
                "seconds": lv["seconds"]}
 
@@ -66,19 +73,24 @@ def main():
     plan = QUICK if args.quick else FULL
     rows = []
     for mesh in plan["meshes"]:
-        rows += rows_of(mesh, "uniform", "butterfly", run(mesh, plan["levels"], ["--uniform"]))
+        rows += rows_of(mesh, "uniform", "butterfly", run(mesh, plan["levels"], ["--uniform"] + PAPER))
         for eps in plan["thresholds"]:
             rows += rows_of(mesh, f"eps={eps}", "butterfly",
-                            run(mesh, plan["levels"], ["--threshold", str(eps)]))
+                            run(mesh, plan["levels"], ["--threshold", str(eps)] + PAPER))
+        # Ours, with the defaults (the fit on): uniform, and the geometric
+        # criterion.
+        rows += rows_of(mesh, "uniform + fit", "butterfly", run(mesh, plan["levels"], ["--uniform"]))
         for tol in plan["tolerances"]:
-            rows += rows_of(mesh, f"tol={tol} dB", "butterfly",
+            rows += rows_of(mesh, f"tol={tol} dB + fit", "butterfly",
                             run(mesh, plan["levels"], ["--uniform", "--tolerance", str(tol)]))
     # Fig. 6: the input oversampled three times with Butterfly or with Loop
     # (and linearly, ours).
     for mesh in plan["scheme_meshes"]:
         for scheme in ["butterfly", "loop", "linear"]:
-            rows += rows_of(mesh, f"{scheme} x3", scheme,
-                            run(mesh, plan["levels"], ["--uniform", "--oversample", "3", "--scheme", scheme]))
+            for fit in (False, True):
+                rows += rows_of(mesh, f"{scheme} x3" + (" + fit" if fit else ""), scheme,
+                                run(mesh, plan["levels"],
+                                    ["--uniform", "--oversample", "3", "--scheme", scheme] + ([] if fit else PAPER)))
     with open(args.out + ".csv", "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=FIELDS)
         w.writeheader()
@@ -91,15 +103,19 @@ def plot(rows, path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    meshes = list(dict.fromkeys((r["mesh"], r["config"].endswith("x3")) for r in rows))
+    def scheme_run(r):
+        return " x3" in r["config"]
+
+    meshes = list(dict.fromkeys((r["mesh"], scheme_run(r)) for r in rows))
     cols = min(3, len(meshes))
     nrows = (len(meshes) + cols - 1) // cols
     fig, axes = plt.subplots(nrows, cols, figsize=(5 * cols, 4 * nrows), squeeze=False)
     for ax, (mesh, scheme_fig) in zip(axes.flat, meshes):
-        sel = [r for r in rows if r["mesh"] == mesh and r["config"].endswith("x3") == scheme_fig]
+        sel = [r for r in rows if r["mesh"] == mesh and scheme_run(r) == scheme_fig]
         for config in dict.fromkeys(r["config"] for r in sel):
             pts = [r for r in sel if r["config"] == config]
-            ax.plot([r["triangles"] for r in pts], [r["rms"] for r in pts], "o-", label=config)
+            fitted = pts[0]["fit"]  # ours: dashed
+            ax.plot([r["triangles"] for r in pts], [r["rms"] for r in pts], "o--" if fitted else "o-", label=config)
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("triangles")
