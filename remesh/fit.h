@@ -20,8 +20,8 @@
 namespace srcodec {
 
 struct FitOptions {
-  int iterations = 2;
-  double step = 0.7;              // the part of the mean signed distance a vertex moves by, per iteration
+  int iterations = 3;
+  double step = 0.9;              // the part of the mean signed distance a vertex moves by, per iteration
   size_t samples_per_vertex = 4;  // input surface samples, spread by area
   uint64_t seed = 1;
 };

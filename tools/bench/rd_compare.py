@@ -2,8 +2,8 @@
 """Compares two rd reports (tools/rd_corpus.py output folders) mesh by mesh.
 
 For each mesh in both: the rate change of NEW's srcodec curve against OLD's
-over the PSNR range both cover, and srcodec against Draco over OLD's shared
-range, for OLD's curve and for NEW's (when NEW reaches the top of that range).
+over the PSNR range both cover, and srcodec against Draco, OLD's curve and
+NEW's, over the one range all three curves (OLD, NEW, Draco) cover.
 A rate change is the mean difference of log bytes at equal PSNR
 (piecewise-linear interpolation of each curve's upper hull: the fewest bytes
 for each PSNR), as exp(mean) - 1; negative: NEW needs fewer bytes. The
@@ -51,7 +51,7 @@ def main():
         sys.exit(__doc__)
     old_dir, new_dir = sys.argv[1:]
     changes, old_vs_draco, new_vs_draco = [], [], []
-    print("| mesh | NEW against OLD | over PSNR | OLD against Draco | NEW against Draco | over PSNR (OLD's shared) |")
+    print("| mesh | NEW against OLD | over PSNR | OLD against Draco | NEW against Draco | over PSNR (all three) |")
     print("|---|---:|---|---:|---:|---|")
     for mesh in sorted(os.listdir(new_dir)):
         new_csv, old_csv = os.path.join(new_dir, mesh, "rd.csv"), os.path.join(old_dir, mesh, "rd.csv")
@@ -60,16 +60,16 @@ def main():
         old, new, draco = curve(old_csv, "srcodec"), curve(new_csv, "srcodec"), curve(old_csv, "draco")
         lo, hi = max(old[1].min(), new[1].min()), min(old[1].max(), new[1].max())
         change = rate_change(old, new, lo, hi)
-        dlo, dhi = max(old[1].min(), draco[1].min()), min(old[1].max(), draco[1].max())
-        # NEW may start above OLD's lowest shared PSNR: clip to what it covers.
-        nlo = max(dlo, new[1].min())
+        # Both against Draco over the one range all three curves cover.
+        nlo = max(old[1].min(), new[1].min(), draco[1].min())
+        dhi = min(old[1].max(), new[1].max(), draco[1].max())
         o, n = rate_change(draco, old, nlo, dhi), rate_change(draco, new, nlo, dhi)
         for values, x in ((changes, change), (old_vs_draco, o), (new_vs_draco, n)):
             if x is not None:
                 values.append(x)
         print(f"| {mesh} | {pct(change)} | {lo:.1f}..{hi:.1f} dB | {pct(o)} | {pct(n)} | {nlo:.1f}..{dhi:.1f} dB |")
     med = lambda v: float(np.median(v)) if v else None
-    print(f"\nMedians: NEW against OLD {pct(med(changes))} ({len(changes)} meshes); against Draco over OLD's ranges: "
+    print(f"\nMedians: NEW against OLD {pct(med(changes))} ({len(changes)} meshes); against Draco: "
           f"OLD {pct(med(old_vs_draco))}, NEW {pct(med(new_vs_draco))}")
 
 
