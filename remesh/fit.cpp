@@ -9,35 +9,12 @@
 #include <limits>
 #include <nanoflann.hpp>
 
-#include "format/area_sampling.h"
-#include "format/split_mix64.h"
 #include "remesh/geometry.h"
+#include "remesh/nearest_triangle.h"
 #include "remesh/point_cloud.h"
 
 namespace srcodec {
 namespace {
-
-std::vector<Eigen::Vector3d> surface_samples(const TriangleMesh& mesh, size_t count, uint64_t seed) {
-  std::vector<double> cumulative(mesh.triangles.size());
-  double total = 0.0;
-  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
-    const auto& tri = mesh.triangles[t];
-    total += 0.5 * (mesh.positions[tri[1]] - mesh.positions[tri[0]]).cross(mesh.positions[tri[2]] - mesh.positions[tri[0]]).norm();
-    cumulative[t] = total;
-  }
-  std::vector<Eigen::Vector3d> out;
-  if (!(total > 0.0)) return out;
-  out.reserve(count);
-  SplitMix64 rng(seed);  // the same samples on every platform
-  for (size_t k = 0; k < count; ++k) {
-    const double at = rng.uniform() * total;
-    const size_t t = std::min<size_t>(std::upper_bound(cumulative.begin(), cumulative.end(), at) - cumulative.begin(),
-                                      cumulative.size() - 1);
-    const auto& tri = mesh.triangles[t];
-    out.push_back(point_in_triangle(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]], rng));
-  }
-  return out;
-}
 
 // The order in which to search the samples' nearest triangles: along a
 // Z-order curve of a 1024^3 grid over their bounding box, so that
@@ -72,8 +49,70 @@ std::vector<uint32_t> spatial_order(const std::vector<Eigen::Vector3d>& points) 
   return order;
 }
 
+// The pairs of triangles that share an edge.
+std::vector<std::pair<int32_t, int32_t>> neighbour_pairs(const std::vector<std::array<int32_t, 3>>& triangles) {
+  std::vector<std::array<int32_t, 3>> edges;  // lower vertex, higher vertex, triangle
+  edges.reserve(3 * triangles.size());
+  for (size_t t = 0; t < triangles.size(); ++t)
+    for (int c = 0; c < 3; ++c) {
+      const auto [a, b] = std::minmax(triangles[t][c], triangles[t][(c + 1) % 3]);
+      edges.push_back({a, b, static_cast<int32_t>(t)});
+    }
+  std::sort(edges.begin(), edges.end());
+  std::vector<std::pair<int32_t, int32_t>> out;
+  for (size_t i = 0; i + 1 < edges.size(); ++i)
+    if (edges[i][0] == edges[i + 1][0] && edges[i][1] == edges[i + 1][1]) out.emplace_back(edges[i][2], edges[i + 1][2]);
+  return out;
+}
+
+// Per point, the unit normal of the nearest vertex of a mesh: the side of
+// the input surface a corner off it is on.
+class Sides {
+ public:
+  explicit Sides(const TriangleMesh& mesh)
+      : normals_(unit_vertex_normals(mesh.positions, mesh.triangles)),
+        cloud_{mesh.positions},
+        tree_(3, cloud_, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {
+    tree_.buildIndex();
+  }
+  Eigen::Vector3d operator()(const Eigen::Vector3d& p) const {
+    uint32_t i = 0;
+    double d2 = 0.0;
+    return tree_.knnSearch(p.data(), 1, &i, &d2) == 1 ? normals_[i] : Eigen::Vector3d::Zero().eval();
+  }
+
+ private:
+  std::vector<Eigen::Vector3d> normals_;
+  PointCloud cloud_;
+  PointTree tree_;
+};
+
+// Not folded: facing the way of the corners' sides.
+bool faces_out(const std::vector<Eigen::Vector3d>& p, const std::vector<Eigen::Vector3d>& side,
+               const std::array<int32_t, 3>& t) {
+  return facing(p[t[0]], p[t[1]], p[t[2]], side[t[0]] + side[t[1]] + side[t[2]]) > 1e-9;
+}
+
 Eigen::Vector3d triangle_normal(const std::vector<Eigen::Vector3d>& p, const std::array<int32_t, 3>& t) {
   return (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]);
+}
+
+// FoldCounter's count, with each vertex's side given.
+FoldCount count_by_sides(const std::vector<Eigen::Vector3d>& positions, const std::vector<Eigen::Vector3d>& side,
+                         const std::vector<std::array<int32_t, 3>>& triangles, std::vector<char>* marked) {
+  FoldCount count;
+  if (marked) marked->assign(triangles.size(), 0);
+  for (size_t t = 0; t < triangles.size(); ++t)
+    if (!faces_out(positions, side, triangles[t])) {
+      ++count.folded_by_nearest_input;
+      if (marked) (*marked)[t] = 1;
+    }
+  for (const auto& [t, u] : neighbour_pairs(triangles))
+    if (pleat(triangle_normal(positions, triangles[t]), triangle_normal(positions, triangles[u]))) {
+      ++count.pleats;
+      if (marked) (*marked)[t] = (*marked)[u] = 1;
+    }
+  return count;
 }
 
 }  // namespace
@@ -90,35 +129,12 @@ FitReport fit_to_surface(const TriangleMesh& input, const TriangleMesh& sides,
   const std::vector<Eigen::Vector3d> samples = surface_samples(input, options.samples_per_vertex * n, options.seed);
   // A corner's side of the surface: the normal of the vertex of `sides`
   // nearest it (as the fold recount judges corners off the input).
-  const std::vector<Eigen::Vector3d> side_normals = unit_vertex_normals(sides.positions, sides.triangles);
-  PointCloud side_cloud{sides.positions};
-  PointTree side_tree(3, side_cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
-  side_tree.buildIndex();
-  auto side_at = [&](const Eigen::Vector3d& p) {
-    uint32_t i = 0;
-    double d2 = 0.0;
-    return side_tree.knnSearch(p.data(), 1, &i, &d2) == 1 ? side_normals[i] : Eigen::Vector3d::Zero().eval();
-  };
+  const Sides side_at(sides);
   std::vector<Eigen::Vector3d> side(n);
   for (size_t v = 0; v < n; ++v) side[v] = side_at(x[v]);
-  auto faces_out = [&](const std::vector<Eigen::Vector3d>& p, const std::vector<Eigen::Vector3d>& s,
-                       const std::array<int32_t, 3>& t) {
-    return facing(p[t[0]], p[t[1]], p[t[2]], s[t[0]] + s[t[1]] + s[t[2]]) > 1e-9;  // not folded
-  };
   // Neighbouring triangles of the finest level, and whether they meet at
   // more than 150 degrees (a pleat, as RefineLevelReport::pleats).
-  std::vector<std::array<int32_t, 3>> edges;  // lower vertex, higher vertex, triangle
-  edges.reserve(3 * fine.size());
-  for (size_t t = 0; t < fine.size(); ++t)
-    for (int c = 0; c < 3; ++c) {
-      const auto [a, b] = std::minmax(fine[t][c], fine[t][(c + 1) % 3]);
-      edges.push_back({a, b, static_cast<int32_t>(t)});
-    }
-  std::sort(edges.begin(), edges.end());
-  std::vector<std::pair<int32_t, int32_t>> neighbours;
-  for (size_t i = 0; i + 1 < edges.size(); ++i)
-    if (edges[i][0] == edges[i + 1][0] && edges[i][1] == edges[i + 1][1])
-      neighbours.emplace_back(edges[i][2], edges[i + 1][2]);
+  const std::vector<std::pair<int32_t, int32_t>> neighbours = neighbour_pairs(fine);
   auto pleated = [&](const std::vector<Eigen::Vector3d>& p, int32_t t, int32_t u) {
     return pleat(triangle_normal(p, fine[t]), triangle_normal(p, fine[u]));
   };
@@ -126,35 +142,17 @@ FitReport fit_to_surface(const TriangleMesh& input, const TriangleMesh& sides,
   std::vector<int32_t> owner(samples.size());
   std::vector<Eigen::Vector3d> weight(samples.size());
   std::vector<double> offset_of(samples.size());
-  std::vector<Eigen::Vector3d> centroids(fine.size());
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
-    for (size_t t = 0; t < fine.size(); ++t) centroids[t] = (x[fine[t][0]] + x[fine[t][1]] + x[fine[t][2]]) / 3.0;
-    PointCloud cloud{centroids};
-    PointTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
-    tree.buildIndex();
-    // Each sample's nearest triangle (among those with the nearest
-    // centroids), where on it, and its signed distance from it.
+    const NearestTriangle nearest(x, fine);
+    // Each sample's nearest triangle, where on it, and its signed distance
+    // from it.
     tbb::parallel_for(tbb::blocked_range<size_t>(0, samples.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
-      constexpr size_t kNear = 10;
-      std::array<uint32_t, kNear> idx{};
-      std::array<double, kNear> d2{};
       for (size_t o = r.begin(); o != r.end(); ++o) {
         const size_t i = search_order[o];
         const Eigen::Vector3d& q = samples[i];
-        const size_t k = tree.knnSearch(q.data(), kNear, idx.data(), d2.data());
-        double best = std::numeric_limits<double>::infinity();
-        int32_t best_t = -1;
-        Eigen::Vector3d best_c;
-        for (size_t j = 0; j < k; ++j) {
-          const auto& tri = fine[idx[j]];
-          const Eigen::Vector3d c = closest_on_triangle(q, x[tri[0]], x[tri[1]], x[tri[2]]);
-          const double d = (c - q).squaredNorm();
-          if (d < best) {
-            best = d;
-            best_t = static_cast<int32_t>(idx[j]);
-            best_c = c;
-          }
-        }
+        const NearestTriangle::Hit hit = nearest(q);
+        const int32_t best_t = hit.triangle;
+        const Eigen::Vector3d& best_c = hit.point;
         owner[i] = best_t;
         if (best_t < 0) continue;
         const auto& tri = fine[best_t];
@@ -238,10 +236,31 @@ FitReport fit_to_surface(const TriangleMesh& input, const TriangleMesh& sides,
       }
     report.mean_offset = report.moved ? total / static_cast<double>(report.moved) : 0.0;
   }
-  for (const auto& tri : fine) report.folded_by_nearest_input += !faces_out(x, side, tri);
-  for (const auto& [t, u] : neighbours) report.pleats += pleated(x, t, u);
+  const FoldCount left = count_by_sides(x, side, fine, nullptr);
+  report.folded_by_nearest_input = left.folded_by_nearest_input;
+  report.pleats = left.pleats;
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;
+}
+
+class FoldCounter::Sides : public srcodec::Sides {
+ public:
+  using srcodec::Sides::Sides;
+};
+
+FoldCounter::FoldCounter(const TriangleMesh& sides)
+    : sides_(sides.positions.empty() ? nullptr : std::make_unique<Sides>(sides)) {}
+FoldCounter::~FoldCounter() = default;
+
+FoldCount FoldCounter::operator()(const std::vector<Eigen::Vector3d>& positions,
+                                  const std::vector<std::array<int32_t, 3>>& triangles, std::vector<char>* marked) const {
+  if (!sides_) {
+    if (marked) marked->assign(triangles.size(), 0);
+    return FoldCount{};
+  }
+  std::vector<Eigen::Vector3d> side(positions.size());
+  for (size_t v = 0; v < positions.size(); ++v) side[v] = (*sides_)(positions[v]);
+  return count_by_sides(positions, side, triangles, marked);
 }
 
 }  // namespace srcodec

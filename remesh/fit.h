@@ -13,6 +13,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "format/mesh.h"
@@ -52,5 +53,30 @@ struct FitReport {
 FitReport fit_to_surface(const TriangleMesh& input, const TriangleMesh& sides,
                          const std::vector<std::vector<std::array<int32_t, 3>>>& levels, const std::vector<char>& fixed,
                          std::vector<Eigen::Vector3d>* positions, const FitOptions& options = {});
+
+// The finest level's triangles facing against the input and its pleats,
+// counted as fit_to_surface counts them (FitReport::folded_by_nearest_input
+// and FitReport::pleats): corners judged by the normals of the vertices of
+// `sides` nearest them. With `marked`, also per triangle: 1 when it is
+// folded or in a pleat.
+struct FoldCount {
+  size_t folded_by_nearest_input = 0;
+  size_t pleats = 0;
+};
+class FoldCounter {
+ public:
+  explicit FoldCounter(const TriangleMesh& sides);  // keeps a reference to it
+  ~FoldCounter();
+  FoldCount operator()(const std::vector<Eigen::Vector3d>& positions,
+                       const std::vector<std::array<int32_t, 3>>& triangles, std::vector<char>* marked = nullptr) const;
+
+ private:
+  class Sides;
+  std::unique_ptr<Sides> sides_;
+};
+inline FoldCount count_folds(const TriangleMesh& sides, const std::vector<Eigen::Vector3d>& positions,
+                             const std::vector<std::array<int32_t, 3>>& triangles) {
+  return FoldCounter(sides)(positions, triangles);
+}
 
 }  // namespace srcodec

@@ -5,6 +5,9 @@
 #include <cmath>
 #include <utility>
 
+#include "format/area_sampling.h"
+#include "format/split_mix64.h"
+
 namespace srcodec {
 
 std::vector<Eigen::Vector3d> unit_vertex_normals(const std::vector<Eigen::Vector3d>& positions,
@@ -80,6 +83,28 @@ double facing(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen:
 bool pleat(const Eigen::Vector3d& normal_t, const Eigen::Vector3d& normal_u) {
   constexpr double kCos150 = -0.86602540378443865;
   return normal_t.dot(normal_u) < kCos150 * normal_t.norm() * normal_u.norm();
+}
+
+std::vector<Eigen::Vector3d> surface_samples(const TriangleMesh& mesh, size_t count, uint64_t seed) {
+  std::vector<double> cumulative(mesh.triangles.size());
+  double total = 0.0;
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto& tri = mesh.triangles[t];
+    total += 0.5 * (mesh.positions[tri[1]] - mesh.positions[tri[0]]).cross(mesh.positions[tri[2]] - mesh.positions[tri[0]]).norm();
+    cumulative[t] = total;
+  }
+  std::vector<Eigen::Vector3d> out;
+  if (!(total > 0.0)) return out;
+  out.reserve(count);
+  SplitMix64 rng(seed);  // the same samples on every platform
+  for (size_t k = 0; k < count; ++k) {
+    const double at = rng.uniform() * total;
+    const size_t t = std::min<size_t>(std::upper_bound(cumulative.begin(), cumulative.end(), at) - cumulative.begin(),
+                                      cumulative.size() - 1);
+    const auto& tri = mesh.triangles[t];
+    out.push_back(point_in_triangle(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]], rng));
+  }
+  return out;
 }
 
 }  // namespace srcodec

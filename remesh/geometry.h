@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "format/mesh.h"
+
 namespace srcodec {
 
 // Per vertex: the unit area-weighted normal of the triangles around it (zero
@@ -37,5 +39,9 @@ double facing(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen:
 // Two neighbouring triangles, of these normals (any length), meet at more
 // than 150 degrees: a pleat.
 bool pleat(const Eigen::Vector3d& normal_t, const Eigen::Vector3d& normal_u);
+
+// `count` points spread over the mesh's surface by area (none when it has
+// no area), the same for the same seed on every platform.
+std::vector<Eigen::Vector3d> surface_samples(const TriangleMesh& mesh, size_t count, uint64_t seed);
 
 }  // namespace srcodec

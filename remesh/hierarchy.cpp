@@ -223,6 +223,45 @@ int32_t TriangleHierarchy::split_neighbour_count(int32_t node) const {
   return count;
 }
 
+StatusOr<TriangleHierarchy> TriangleHierarchy::replayed(const std::vector<char>& keep, std::vector<int32_t>* old_vertex,
+                                                        std::vector<int32_t>* old_node_out) const {
+  std::vector<std::array<int32_t, 3>> base(base_face_count_);
+  for (size_t f = 0; f < base_face_count_; ++f) base[f] = nodes_[f].v;  // the roots, in base face order
+  SRCODEC_ASSIGN_OR_RETURN(TriangleHierarchy out, create(base_vertex_count_, base));
+  // Per node of `out`, the node at the same place here: the roots for
+  // themselves, children for the children in the same order (a parent comes
+  // before its children).
+  std::vector<int32_t> old_node;
+  auto match = [&] {
+    old_node.resize(out.nodes_.size());
+    for (size_t n = 0; n < out.nodes_.size(); ++n) {
+      if (n < base_face_count_) old_node[n] = static_cast<int32_t>(n);
+      const int32_t child = out.nodes_[n].first_child;
+      if (child < 0) continue;
+      // out's splits are a subset of these, or their balance and closure,
+      // which this hierarchy (balanced and closed) has as well
+      assert(nodes_[old_node[n]].first_child >= 0);
+      for (int c = 0; c < 4; ++c) old_node[child + c] = nodes_[old_node[n]].first_child + c;
+    }
+  };
+  for (int32_t level = 0; level < max_level_; ++level) {
+    match();
+    std::vector<int32_t> new_node(nodes_.size(), -1);
+    for (size_t n = 0; n < old_node.size(); ++n) new_node[old_node[n]] = static_cast<int32_t>(n);
+    for (size_t o = 0; o < nodes_.size(); ++o)  // in this hierarchy's order, as the splits were made
+      if (nodes_[o].level == level && nodes_[o].first_child >= 0 && o < keep.size() && keep[o] && new_node[o] >= 0)
+        out.split(new_node[o]);
+  }
+  match();
+  if (old_vertex) {
+    old_vertex->assign(static_cast<size_t>(out.vertex_count()), -1);
+    for (size_t n = 0; n < out.nodes_.size(); ++n)
+      for (int c = 0; c < 3; ++c) (*old_vertex)[out.nodes_[n].v[c]] = nodes_[old_node[n]].v[c];
+  }
+  if (old_node_out) *old_node_out = std::move(old_node);
+  return out;
+}
+
 void TriangleHierarchy::split(int32_t node, std::vector<int32_t>* new_vertices) {
   assert(node >= 0 && node < static_cast<int32_t>(nodes_.size()));
   if (node < 0 || node >= static_cast<int32_t>(nodes_.size()) || nodes_[node].first_child >= 0) return;

@@ -74,6 +74,14 @@ class TriangleHierarchy {
   // `new_vertices` if not null. A node that is already split is left alone.
   void split(int32_t node, std::vector<int32_t>* new_vertices = nullptr);
 
+  // This hierarchy with only the splits that `keep` marks (one flag per
+  // node; a marked node under an unmarked one stays unsplit) and the balance
+  // and closure splits they need, replayed level by level over the same base
+  // mesh. `old_vertex` and `old_node` (if not null) get, per vertex and per
+  // node of the result, the vertex and the node at the same place here.
+  StatusOr<TriangleHierarchy> replayed(const std::vector<char>& keep, std::vector<int32_t>* old_vertex = nullptr,
+                                       std::vector<int32_t>* old_node = nullptr) const;
+
   // The watertight triangle mesh of level `level` (>= 0; levels beyond
   // max_level() give the finest mesh): nodes at levels <= level that are
   // leaves there, each with at most one hanging vertex (a midpoint of level

@@ -1658,37 +1658,12 @@ class Refiner {
     }
     *within_tolerance = kept_splits();
     for (int32_t k = 0; k < level; ++k) (*within_tolerance)[k] = (*selected)[k] - (*within_tolerance)[k];
-    // The kept splits, replayed level by level. A node of the new hierarchy
-    // stands for the old node at the same place: the roots for themselves,
-    // children for the old node's children in the same order.
-    SRCODEC_ASSIGN_OR_RETURN(TriangleHierarchy kept,
-                             TriangleHierarchy::create(static_cast<int32_t>(base_.mesh.positions.size()),
-                                                       base_.mesh.triangles));
-    std::vector<int32_t> old_node;
-    auto match = [&] {
-      old_node.resize(kept.nodes().size());
-      for (size_t n = 0; n < kept.nodes().size(); ++n) {
-        const TriangleHierarchy::Node& node = kept.nodes()[n];
-        if (node.parent < 0) old_node[n] = static_cast<int32_t>(n);
-        if (node.first_child >= 0)
-          for (int c = 0; c < 4; ++c) old_node[node.first_child + c] = nodes[old_node[n]].first_child + c;
-      }
-    };
-    for (int32_t k = 0; k < level; ++k) {
-      match();
-      std::vector<int32_t> new_node(nodes.size(), -1);
-      for (size_t n = 0; n < old_node.size(); ++n) new_node[old_node[n]] = static_cast<int32_t>(n);
-      for (size_t n = 0; n < nodes.size(); ++n)
-        if (nodes[n].level == k && !leaf[n]) {
-          assert(new_node[n] >= 0 && "a kept split under an undone one");
-          kept.split(new_node[n]);
-        }
-    }
-    match();
-    // The sites: each kept vertex keeps its old vertex's input vertex.
-    std::vector<int32_t> old_vertex(static_cast<size_t>(kept.vertex_count()), -1);
-    for (size_t n = 0; n < old_node.size(); ++n)
-      for (int c = 0; c < 3; ++c) old_vertex[kept.nodes()[n].v[c]] = nodes[old_node[n]].v[c];
+    // The kept splits, replayed; the sites: each kept vertex keeps its old
+    // vertex's input vertex.
+    std::vector<char> keep(nodes.size());
+    for (size_t n = 0; n < nodes.size(); ++n) keep[n] = !leaf[n];
+    std::vector<int32_t> old_vertex;
+    SRCODEC_ASSIGN_OR_RETURN(TriangleHierarchy kept, h_.replayed(keep, &old_vertex));
     std::vector<int32_t> anchor(old_vertex.size());
     for (int32_t a : anchor_) site_of_[a] = -1;
     for (size_t v = 0; v < old_vertex.size(); ++v) {

@@ -509,6 +509,57 @@ TEST(TriangleHierarchy, SameSplitsSameResult) {
   for (int32_t l = 0; l <= a.max_level(); ++l) EXPECT_EQ(a.level_triangles(l), b.level_triangles(l));
 }
 
+// replayed: every split kept gives the same meshes (vertices renumbered
+// through old_vertex); none kept gives the base; one kept gives that split
+// and the closure it needs, with its vertices at the old ones' places.
+TEST(TriangleHierarchy, ReplayedKeepsTheMarkedSplits) {
+  const Base base = base_of(test::icosphere(0, 1.0));
+  TriangleHierarchy h = make(base);
+  std::mt19937 rng(5);
+  for (int i = 0; i < 120; ++i) {
+    const auto l = leaves(h);
+    h.split(l[rng() % l.size()]);
+  }
+  auto renumbered = [](Triangles t, const std::vector<int32_t>& old_vertex) {
+    for (auto& f : t)
+      for (int32_t& v : f) v = old_vertex[v];
+    return t;
+  };
+  std::vector<int32_t> old_vertex, old_node;
+  auto all = h.replayed(std::vector<char>(h.nodes().size(), 1), &old_vertex, &old_node);
+  ASSERT_TRUE(all.ok()) << all.status().message();
+  EXPECT_EQ(all->nodes().size(), h.nodes().size());
+  for (int32_t l = 0; l <= h.max_level(); ++l)
+    EXPECT_EQ(renumbered(all->level_triangles(l), old_vertex), h.level_triangles(l)) << "level " << l;
+  for (size_t n = 0; n < old_node.size(); ++n) EXPECT_EQ(all->nodes()[n].level, h.nodes()[old_node[n]].level);
+
+  auto none = h.replayed(std::vector<char>(h.nodes().size(), 0));
+  ASSERT_TRUE(none.ok());
+  EXPECT_EQ(none->max_level(), 0);
+  EXPECT_EQ(none->level_triangles(0), base.triangles);
+
+  // Keep only the first split node of level 1 and its ancestors.
+  int32_t pick = -1;
+  for (size_t n = 0; n < h.nodes().size() && pick < 0; ++n)
+    if (h.nodes()[n].level == 1 && h.nodes()[n].first_child >= 0) pick = static_cast<int32_t>(n);
+  ASSERT_GE(pick, 0);
+  std::vector<char> keep(h.nodes().size(), 0);
+  keep[pick] = keep[h.nodes()[pick].parent] = 1;
+  auto one = h.replayed(keep, &old_vertex, &old_node);
+  ASSERT_TRUE(one.ok());
+  EXPECT_EQ(one->max_level(), 2);
+  EXPECT_TRUE(check_levels(one.value(), base));
+  EXPECT_TRUE(check_vertex_records(one.value(), base));
+  size_t split_at_level_1 = 0;
+  for (size_t n = 0; n < one->nodes().size(); ++n) {
+    const auto& node = one->nodes()[n];
+    Triangles mine{node.v};
+    EXPECT_EQ(renumbered(mine, old_vertex)[0], h.nodes()[old_node[n]].v) << "node " << n;
+    if (node.level == 1 && node.first_child >= 0) ++split_at_level_1;
+  }
+  EXPECT_EQ(split_at_level_1, 1u);  // no neighbour of level 1 needed closing by a split
+}
+
 // The node locate returns is a leaf of the level, in the point's base face,
 // and its corners (by their nominal places) enclose the point.
 ::testing::AssertionResult located_well(const TriangleHierarchy& h, const Base& base, const ParamPoint& p,
