@@ -143,6 +143,12 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
   if (!(options.tolerance_db >= 0.0 && options.tolerance_db < 400.0))
     return invalid_argument("remesh: tolerance " + std::to_string(options.tolerance_db) +
                             " dB; use 0 (off) or a PSNR below 400 dB");
+  if (!(options.max_loss_db >= 0.0 && options.max_loss_db <= 60.0))
+    return invalid_argument("remesh: max loss " + std::to_string(options.max_loss_db) +
+                            " dB; use 0 (off) or more, up to 60");
+  if (options.max_loss_db > 0.0 && (!options.uniform || options.tolerance_db > 0.0))
+    return invalid_argument("remesh: the measured coarsening (max loss) undoes splits of the uniform refinement; ask "
+                            "for uniform refinement without a tolerance or threshold");
   if (options.oversample < -1 || options.oversample > 3)
     return invalid_argument("remesh: oversample " + std::to_string(options.oversample) + "; use auto or 0 to 3");
   if (mesh.triangles.empty()) return invalid_mesh("remesh: the mesh has no triangles");
@@ -330,7 +336,29 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
              std::to_string(rep.fit.folded_by_nearest_input) + " folded (recount), " + std::to_string(rep.fit.pleats) +
              " pleats, " + std::to_string(rep.fit.seconds) + " s");
   }
-  return SemiRegularMesh{std::move(base.mesh), std::move(refined.hierarchy), std::move(positions), levels};
+  SemiRegularMesh out{std::move(base.mesh), std::move(refined.hierarchy), std::move(positions), levels};
+  if (options.max_loss_db > 0.0 && levels > 0) {
+    CoarseningOptions coarsening;
+    coarsening.max_loss_db = options.max_loss_db;
+    SRCODEC_ASSIGN_OR_RETURN(out, coarsen_by_measured_error(mesh, input, out, coarsening, &rep.coarsening));
+    // The level reports: the last one's splits are those kept (fewer
+    // levels when none is).
+    rep.levels.resize(static_cast<size_t>(out.levels));
+    if (out.levels == levels) {
+      RefineLevelReport& last = rep.levels.back();
+      last.within_tolerance = rep.coarsening.undone;
+      last.split = rep.coarsening.candidates - rep.coarsening.undone;
+    }
+    progress("measured coarsening: " + std::to_string(rep.coarsening.undone) + " of " +
+             std::to_string(rep.coarsening.candidates) + " splits of level " + std::to_string(levels - 1) +
+             " undone, " + std::to_string(rep.coarsening.triangles_before) + " -> " +
+             std::to_string(rep.coarsening.triangles_after) + " triangles, estimated loss " +
+             std::to_string(rep.coarsening.estimated_loss_db) + " dB (" + std::to_string(rep.coarsening.kept_for_folds) +
+             " kept where undoing them folded or pleated); then " +
+             std::to_string(rep.coarsening.folds.folded_by_nearest_input) + " folded (recount), " +
+             std::to_string(rep.coarsening.folds.pleats) + " pleats, " + std::to_string(rep.coarsening.seconds) + " s");
+  }
+  return out;
 }
 
 }  // namespace srcodec

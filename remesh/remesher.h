@@ -12,6 +12,7 @@
 #include "format/mesh.h"
 #include "format/status.h"
 #include "remesh/fit.h"
+#include "remesh/measured_coarsening.h"
 #include "remesh/oversample.h"
 #include "remesh/refine.h"
 #include "remesh/semi_regular_mesh.h"
@@ -35,6 +36,11 @@ struct RemeshOptions {
   // bounding-box diagonal x 10^(-dB/20). Applies with uniform or the
   // threshold; 0 turns it off.
   double tolerance_db = 0.0;
+  // Adaptive by measured error (remesh/measured_coarsening.h, ours): after
+  // the uniform refinement and the fit, the last level's splits that gain
+  // least are undone while the estimated PSNR stays within this many dB of
+  // the full refinement's. Needs `uniform`, no tolerance; 0 turns it off.
+  double max_loss_db = 0.0;
   int oversample = -1;     // Butterfly/Loop steps 0..3; -1 = auto, per component (remesher.cpp)
   OversampleScheme scheme = OversampleScheme::kButterfly;
   int max_lloyd_iterations = 10;  // per refinement level
@@ -61,6 +67,7 @@ struct RemeshReport {
   double seconds_oversample = 0.0, seconds_sites = 0.0, seconds_base = 0.0, seconds_refine = 0.0;
   std::vector<RefineLevelReport> levels;
   FitReport fit;  // with RemeshOptions::fit_surface
+  CoarseningReport coarsening;  // with RemeshOptions::max_loss_db
 };
 
 // The default base size: the larger the base mesh, the less the

@@ -443,6 +443,67 @@ TEST(Remesher, ToleranceRefinesOnlyWhereTheSurfaceIsDetailed) {
   for (const Eigen::Vector3d& p : fine_a.positions) EXPECT_EQ(uniform_places.count({p.x(), p.y(), p.z()}), 1u);
 }
 
+// The measured coarsening (RemeshOptions::max_loss_db) on the half-flat,
+// half-rippled square, with the fit: the last level's splits go where the
+// ripples are, the remesh stays within the loss asked of uniform (by the
+// metric, with a little room for its sampling), keeps uniform's places,
+// folds no more than uniform, and is the same every run.
+TEST(Remesher, MaxLossKeepsTheSplitsThatGain) {
+  TriangleMesh square = test::flat_square(90);
+  for (Eigen::Vector3d& p : square.positions)
+    if (p.x() > 0.5) p.z() = 0.05 * std::sin(20.0 * p.x()) * std::sin(20.0 * p.y()) * (p.x() - 0.5);
+  RemeshOptions uniform = small_options(3, 30, true);
+  uniform.fit_surface = true;
+  RemeshOptions adaptive = uniform;
+  adaptive.max_loss_db = 0.5;
+  RemeshReport ur, ar;
+  auto u = remesh(square, uniform, &ur);
+  auto a = remesh(square, adaptive, &ar);
+  auto again = remesh(square, adaptive);
+  ASSERT_TRUE(u.ok()) << u.status().message();
+  ASSERT_TRUE(a.ok() && again.ok()) << a.status().message();
+  expect_semi_regular(a.value());
+  ASSERT_EQ(a->levels, 3);
+  const TriangleMesh fine_u = u->level_mesh(3), fine_a = a->level_mesh(3);
+  EXPECT_EQ(fine_a.positions, again->level_mesh(3).positions);
+  EXPECT_EQ(fine_a.triangles, again->level_mesh(3).triangles);
+  EXPECT_GT(ar.coarsening.undone, 0u);
+  EXPECT_LE(ar.coarsening.estimated_loss_db, 0.5);
+  EXPECT_EQ(ar.coarsening.triangles_after, fine_a.triangles.size());
+  EXPECT_LT(fine_a.triangles.size(), fine_u.triangles.size() * 65 / 100);  // 56% (2026-11-30)
+  const double loss = psnr_against(square, fine_u) - psnr_against(square, fine_a);
+  EXPECT_LT(loss, 0.6);  // 0.26, estimated 0.49
+  EXPECT_GT(loss, -0.1);  // nothing is gained by undoing splits
+  auto count = [](const TriangleMesh& m, double lo, double hi) {
+    return std::count_if(m.positions.begin(), m.positions.end(),
+                         [&](const Eigen::Vector3d& p) { return p.x() >= lo && p.x() <= hi; });
+  };
+  EXPECT_LT(count(fine_a, 0.0, 0.25), count(fine_a, 0.75, 1.0) / 3);  // 173 and 728
+  EXPECT_LE(ar.coarsening.folds.folded_by_nearest_input, ur.fit.folded_by_nearest_input);
+  EXPECT_LE(ar.coarsening.folds.pleats, ur.fit.pleats);
+  std::set<std::array<double, 3>> uniform_places;
+  for (const Eigen::Vector3d& p : fine_u.positions) uniform_places.insert({p.x(), p.y(), p.z()});
+  for (const Eigen::Vector3d& p : fine_a.positions) EXPECT_EQ(uniform_places.count({p.x(), p.y(), p.z()}), 1u);
+}
+
+// The measured coarsening undoes splits of the uniform refinement: it is
+// refused with a threshold or a tolerance, and outside (0, 60] dB.
+TEST(Remesher, MaxLossNeedsTheUniformRefinement) {
+  const TriangleMesh square = test::flat_square(20);
+  RemeshOptions o = small_options(2, 10, false);
+  o.threshold = 4.0;
+  o.max_loss_db = 0.5;
+  EXPECT_EQ(remesh(square, o).status().code(), StatusCode::kInvalidArgument);
+  o.uniform = true;
+  o.tolerance_db = 60.0;
+  EXPECT_EQ(remesh(square, o).status().code(), StatusCode::kInvalidArgument);
+  o.tolerance_db = 0.0;
+  o.max_loss_db = 61.0;
+  EXPECT_EQ(remesh(square, o).status().code(), StatusCode::kInvalidArgument);
+  o.max_loss_db = -1.0;
+  EXPECT_EQ(remesh(square, o).status().code(), StatusCode::kInvalidArgument);
+}
+
 // Eq. 5 on a square sampled densely on its left and sparsely on its right
 // (x = t^2 over an even grid in t): the threshold keeps the last splits where
 // the cells hold many input vertices. It is judged on the uniform refinement

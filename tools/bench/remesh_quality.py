@@ -3,12 +3,13 @@
 
 For each smooth scan: uniform remeshing to 4 and 5 levels with the default
 options, then adaptive remeshing (5 levels) at several Eq. 5 thresholds and
-geometric tolerances (--tolerance, within 2 dB of uniform L5's PSNR); the
-finest level's PSNR against the input, its triangle count, wall time and peak
+geometric tolerances (--tolerance, within 2 dB of uniform L5's PSNR) and
+measured losses (--max-loss); the finest level's PSNR against the input, its triangle count, wall time and peak
 memory (from /usr/bin/time). Prints a Markdown table.
 
 usage: /usr/bin/python3 tools/bench/remesh_quality.py [MESH ...] > docs/remesh_quality.md
        THRESHOLDS= TOLERANCE_OFFSETS=-2,-1 NO_HEADER=1 .../remesh_quality.py igea.ply   (rows only, a sweep)
+       THRESHOLDS= TOLERANCE_OFFSETS= MAX_LOSSES=0.5,0.7 NO_HEADER=1 .../remesh_quality.py   (uniform and --max-loss rows)
 """
 import json
 import os
@@ -28,9 +29,10 @@ def int_list(name, default):
     return default if value is None else [int(x) for x in value.split(",") if x.strip()]
 
 
-# Environment overrides for sweeps: THRESHOLDS=4,8 TOLERANCE_OFFSETS=-2,-1 (empty skips those rows).
+# Environment overrides for sweeps: THRESHOLDS=4,8 TOLERANCE_OFFSETS=-2,-1 MAX_LOSSES=0.5 (empty skips those rows).
 THRESHOLDS = int_list("THRESHOLDS", [4, 8, 16])
 TOLERANCE_OFFSETS = int_list("TOLERANCE_OFFSETS", [-2, 0, 2])
+MAX_LOSSES = [x.strip() for x in os.environ.get("MAX_LOSSES", "0.5").split(",") if x.strip()]
 
 
 def run(mesh, extra):
@@ -60,14 +62,16 @@ def main():
     print("machine. PSNR of the finest level against the input (srcodec compare, 200k samples per surface); wall time")
     print("and peak memory of the whole `srcodec remesh` run, error measurement included. Default base size and")
     print("`--oversample auto`. Adaptive runs use 5 levels: \"eps\" rows the paper's criterion (`--threshold`),")
-    print("\"geometric\" rows `--uniform --tolerance` at TOLERANCE_OFFSETS dB (default -2, 0, 2) from uniform L5's PSNR.")
+    print("\"geometric\" rows `--uniform --tolerance` at TOLERANCE_OFFSETS dB (default -2, 0, 2) from uniform L5's PSNR,")
+    print("\"measured\" rows `--max-loss` at MAX_LOSSES dB (default 0.5).")
     print("\"tri %\" and \"vs L5\" are the triangle count and the PSNR relative to uniform 5 levels. \"folded\": triangles")
     print("facing against the input surface, on the finest level + on the coarser ones; \"pleats\": edges of the finest")
     print("level whose two triangles meet at more than 150 degrees. The goal for both is 0. \"recount\": the finest")
     print("level's folded triangles with every corner judged by the input vertex nearest it (the JSON's")
     print("folded_by_nearest_input; \"folded\" judges a corner off the input by the normal it was given). The fit to")
     print("the input surface (on by default) runs last: \"folded\" is counted before it, \"recount\" and \"pleats\"")
-    print("after it (fit_folded_by_nearest_input, fit_pleats).")
+    print("after it (fit_folded_by_nearest_input, fit_pleats), and for \"measured\" rows after the coarsening that")
+    print("follows the fit (coarsened_folded_by_nearest_input, coarsened_pleats).")
     print()
     print("| mesh | run | base | oversampled | finest vertices | triangles | tri % | PSNR dB | vs L5 dB | folded "
           "| recount | pleats | seconds | peak MB |")
@@ -83,6 +87,7 @@ def table(meshes):
         # The geometric criterion at tolerances near uniform L5's
         # PSNR (known only once that row has run).
         runs += [(f"geometric L5 uniform{k:+d}", k) for k in TOLERANCE_OFFSETS]
+        runs += [(f"measured L5 loss={x} dB", ["--levels", "5", "--max-loss", x]) for x in MAX_LOSSES]
         for name, extra in runs:
             if isinstance(extra, int):
                 if uniform5 is None:
@@ -105,6 +110,8 @@ def table(meshes):
             fitted = d.get("fit_surface", False)
             recount = d["fit_folded_by_nearest_input"] if fitted else top.get("folded_by_nearest_input", "")
             pleats = d["fit_pleats"] if fitted else top.get("pleats", 0)
+            if "coarsened_pleats" in d:  # --max-loss: after the coarsening
+                recount, pleats = d["coarsened_folded_by_nearest_input"], d["coarsened_pleats"]
             print(f"| {mesh} | {name} | {d['base_vertices']} | {d['oversampled_vertices']} | {top['vertices']} "
                   f"| {top['triangles']} | {pct} | {top['psnr']:.2f} | {delta} | {folded} "
                   f"| {recount} | {pleats} | {d['wall']:.1f} "

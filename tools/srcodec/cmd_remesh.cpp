@@ -114,7 +114,16 @@ Status run_remesh(const RemeshCliOptions& o) {
         .field("fit_mean_offset", report.fit.mean_offset)
         .field("fit_folded_by_nearest_input", report.fit.folded_by_nearest_input)
         .field("fit_pleats", report.fit.pleats)
-        .field("seconds", seconds)
+        .field("max_loss_db", options.max_loss_db);
+    if (options.max_loss_db > 0.0)
+      j.field("coarsening_candidates", report.coarsening.candidates)
+          .field("coarsening_undone", report.coarsening.undone)
+          .field("coarsening_estimated_loss_db", report.coarsening.estimated_loss_db)
+          .field("coarsening_kept_for_folds", report.coarsening.kept_for_folds)
+          .field("coarsening_seconds", report.coarsening.seconds)
+          .field("coarsened_folded_by_nearest_input", report.coarsening.folds.folded_by_nearest_input)
+          .field("coarsened_pleats", report.coarsening.folds.pleats);
+    j.field("seconds", seconds)
         .array("levels", level_json);
     std::cout << j.str() << "\n";
   } else {

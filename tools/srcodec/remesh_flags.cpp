@@ -20,12 +20,19 @@ void add_remesh_flags(CLI::App* cmd, RemeshFlags& f) {
                                     "refinement where the input is dense enough for one, else level by level");
   threshold->check(kFiniteNumber)->check(CLI::NonNegativeNumber);
   cmd->add_flag("--uniform", f.uniform, "Split every triangle (the default without --threshold)")->excludes(threshold);
-  cmd->add_option("--tolerance", f.tolerance_db,
-                  "Adaptive by geometry: after the last level, undo a triangle's split where the input's RMS "
-                  "distance to it is within this PSNR in dB (bounding-box diagonal x 10^(-dB/20)); with --uniform "
-                  "or --threshold")
+  auto* tolerance = cmd->add_option("--tolerance", f.tolerance_db,
+                                    "Adaptive by geometry: after the last level, undo a triangle's split where the "
+                                    "input's RMS distance to it is within this PSNR in dB (bounding-box diagonal x "
+                                    "10^(-dB/20)); with --uniform or --threshold");
+  tolerance->check(kFiniteNumber)->check(CLI::Range(1.0, 300.0));
+  cmd->add_option("--max-loss", f.max_loss_db,
+                  "Adaptive by measured error: refine uniformly and fit, then undo the last level's splits that "
+                  "gain least (error measured both ways against the input) while the estimated PSNR stays within "
+                  "this many dB of the full refinement's; e.g. 0.5")
       ->check(kFiniteNumber)
-      ->check(CLI::Range(1.0, 300.0));
+      ->check(CLI::Range(0.01, 60.0))
+      ->excludes(threshold)
+      ->excludes(tolerance);
   cmd->add_flag("!--no-fit-surface", f.fit_surface,
                 "Leave every vertex where the remeshing put it (on the input's vertices, as in the paper): by "
                 "default the vertices above the base mesh then move along their normals to centre the finest "
@@ -48,6 +55,7 @@ StatusOr<RemeshOptions> to_remesh_options(const RemeshFlags& o) {
   r.uniform = o.uniform || o.threshold < 0.0;
   r.threshold = std::max(o.threshold, 0.0);
   r.tolerance_db = o.tolerance_db;
+  r.max_loss_db = o.max_loss_db;
   r.fit_surface = o.fit_surface;
   if (o.oversample == "auto") {
     r.oversample = -1;

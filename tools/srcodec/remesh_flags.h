@@ -17,14 +17,15 @@ struct RemeshFlags {
   double threshold = -1.0;
   bool uniform = false;
   double tolerance_db = 0.0;
+  double max_loss_db = 0.0;
   bool fit_surface = true;
   // Set by add_remesh_flags: without --levels, `levels` is fitted to small
   // inputs (RemeshOptions::fit_levels).
   const CLI::Option* levels_option = nullptr;
 };
 
-// Adds --levels, --base-vertices, --threshold, --uniform, --tolerance, --no-fit-surface, --oversample,
-// --scheme.
+// Adds --levels, --base-vertices, --threshold, --uniform, --tolerance, --max-loss, --no-fit-surface,
+// --oversample, --scheme.
 void add_remesh_flags(CLI::App* cmd, RemeshFlags& flags);
 StatusOr<RemeshOptions> to_remesh_options(const RemeshFlags& flags);
 
