@@ -65,9 +65,11 @@ std::vector<std::pair<int32_t, int32_t>> neighbour_pairs(const std::vector<std::
   return out;
 }
 
+}  // namespace
+
 // Per point, the unit normal of the nearest vertex of a mesh: the side of
 // the input surface a corner off it is on.
-class Sides {
+class FoldCounter::Sides {
  public:
   explicit Sides(const TriangleMesh& mesh)
       : normals_(unit_vertex_normals(mesh.positions, mesh.triangles)),
@@ -86,6 +88,8 @@ class Sides {
   PointCloud cloud_;
   PointTree tree_;
 };
+
+namespace {
 
 // Not folded: facing the way of the corners' sides.
 bool faces_out(const std::vector<Eigen::Vector3d>& p, const std::vector<Eigen::Vector3d>& side,
@@ -129,7 +133,7 @@ FitReport fit_to_surface(const TriangleMesh& input, const TriangleMesh& sides,
   const std::vector<Eigen::Vector3d> samples = surface_samples(input, options.samples_per_vertex * n, options.seed);
   // A corner's side of the surface: the normal of the vertex of `sides`
   // nearest it (as the fold recount judges corners off the input).
-  const Sides side_at(sides);
+  const FoldCounter::Sides side_at(sides);
   std::vector<Eigen::Vector3d> side(n);
   for (size_t v = 0; v < n; ++v) side[v] = side_at(x[v]);
   // Neighbouring triangles of the finest level, and whether they meet at
@@ -242,11 +246,6 @@ FitReport fit_to_surface(const TriangleMesh& input, const TriangleMesh& sides,
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;
 }
-
-class FoldCounter::Sides : public srcodec::Sides {
- public:
-  using srcodec::Sides::Sides;
-};
 
 FoldCounter::FoldCounter(const TriangleMesh& sides)
     : sides_(sides.positions.empty() ? nullptr : std::make_unique<Sides>(sides)) {}

@@ -70,13 +70,10 @@ class FoldCounter {
   FoldCount operator()(const std::vector<Eigen::Vector3d>& positions,
                        const std::vector<std::array<int32_t, 3>>& triangles, std::vector<char>* marked = nullptr) const;
 
+  class Sides;  // per point, the unit normal of the nearest vertex of `sides` (fit.cpp)
+
  private:
-  class Sides;
   std::unique_ptr<Sides> sides_;
 };
-inline FoldCount count_folds(const TriangleMesh& sides, const std::vector<Eigen::Vector3d>& positions,
-                             const std::vector<std::array<int32_t, 3>>& triangles) {
-  return FoldCounter(sides)(positions, triangles);
-}
 
 }  // namespace srcodec

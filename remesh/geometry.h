@@ -40,6 +40,20 @@ double facing(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen:
 // than 150 degrees: a pleat.
 bool pleat(const Eigen::Vector3d& normal_t, const Eigen::Vector3d& normal_u);
 
+// Calls f with the centroid of each of the n x n sub-triangles of triangle
+// abc (those of a regular split of each edge into n), row by row.
+template <class F>
+void for_each_subtriangle_centroid(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c, int n,
+                                   F&& f) {
+  const Eigen::Vector3d u = (b - a) / n, v = (c - a) / n;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; i + j < n; ++j) {
+      const Eigen::Vector3d corner = a + i * u + j * v;
+      f(Eigen::Vector3d(corner + (u + v) / 3.0));                               // upright sub-triangle
+      if (i + j + 1 < n) f(Eigen::Vector3d(corner + (2.0 * u + 2.0 * v) / 3.0));  // the inverted one beside it
+    }
+}
+
 // `count` points spread over the mesh's surface by area (none when it has
 // no area), the same for the same seed on every platform.
 std::vector<Eigen::Vector3d> surface_samples(const TriangleMesh& mesh, size_t count, uint64_t seed);

@@ -21,18 +21,11 @@ double area(const std::vector<Eigen::Vector3d>& x, const std::array<int32_t, 3>&
   return 0.5 * (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]).norm();
 }
 
-// The mean of f over triangle abc by the centroids of its n x n sub-triangles
-// (those of a regular split of each edge into n).
+// The mean of f over triangle abc by the centroids of its n x n sub-triangles.
 template <class F>
 double grid_mean(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c, int n, F&& f) {
-  const Eigen::Vector3d u = (b - a) / n, v = (c - a) / n;
   double sum = 0.0;
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; i + j < n; ++j) {
-      const Eigen::Vector3d corner = a + i * u + j * v;
-      sum += f(corner + (u + v) / 3.0);                            // upright sub-triangle
-      if (i + j + 1 < n) sum += f(corner + (2.0 * u + 2.0 * v) / 3.0);  // the inverted one beside it
-    }
+  for_each_subtriangle_centroid(a, b, c, n, [&](const Eigen::Vector3d& p) { sum += f(p); });
   return sum / (n * n);
 }
 
@@ -83,10 +76,11 @@ StatusOr<SemiRegularMesh> coarsen_by_measured_error(const TriangleMesh& input, c
   const int32_t top = mesh.levels;
   const TriangleHierarchy& h = mesh.hierarchy;
   const std::vector<Eigen::Vector3d>& x = mesh.positions;
+  const FoldCounter folds(sides);  // for the rounds that put splits back, and the result's count
   auto finish = [&]() -> StatusOr<SemiRegularMesh> {
     const std::vector<std::array<int32_t, 3>> finest = out.hierarchy.level_triangles(out.levels);
     rep.triangles_after = finest.size();
-    rep.folds = count_folds(sides, out.positions, finest);
+    rep.folds = folds(out.positions, finest);
     rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (report) *report = rep;
     return out;
@@ -232,7 +226,6 @@ StatusOr<SemiRegularMesh> coarsen_by_measured_error(const TriangleMesh& input, c
   // triangle of the finest level (the fit kept the full refinement's levels
   // from folding, not a mix of them). Then the fewest splits again: those
   // put back may gain nothing (their children fold or pleat instead).
-  const FoldCounter folds(sides);
   for (int round = 0; round < 8; ++round) {
     std::vector<int32_t> node_of;
     std::vector<Eigen::Vector3d> at(best.old_vertex.size());

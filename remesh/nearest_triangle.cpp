@@ -50,17 +50,11 @@ NearestTriangle::NearestTriangle(const std::vector<Eigen::Vector3d>& positions,
     const auto& tri = triangles[t];
     const int n = edge > 0.0 ? std::clamp(static_cast<int>(std::ceil(longest[t] / edge)), 1, 64) : 1;
     reach_ = std::max(reach_, 2.0 / 3.0 * longest[t] / n);
-    const Eigen::Vector3d a = positions[tri[0]], u = (positions[tri[1]] - a) / n, v = (positions[tri[2]] - a) / n;
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; i + j < n; ++j) {
-        const Eigen::Vector3d corner = a + i * u + j * v;
-        cover_.push_back(corner + (u + v) / 3.0);
-        cover_triangle_.push_back(static_cast<int32_t>(t));
-        if (i + j + 1 < n) {
-          cover_.push_back(corner + (2.0 * u + 2.0 * v) / 3.0);
-          cover_triangle_.push_back(static_cast<int32_t>(t));
-        }
-      }
+    for_each_subtriangle_centroid(positions[tri[0]], positions[tri[1]], positions[tri[2]], n,
+                                  [&](const Eigen::Vector3d& p) {
+                                    cover_.push_back(p);
+                                    cover_triangle_.push_back(static_cast<int32_t>(t));
+                                  });
   }
   cover_tree_.buildIndex();
 }
