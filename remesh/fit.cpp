@@ -67,27 +67,25 @@ std::vector<std::pair<int32_t, int32_t>> neighbour_pairs(const std::vector<std::
 
 }  // namespace
 
-// Per point, the unit normal of the nearest vertex of a mesh: the side of
-// the input surface a corner off it is on.
-class FoldCounter::Sides {
- public:
-  explicit Sides(const TriangleMesh& mesh)
-      : normals_(unit_vertex_normals(mesh.positions, mesh.triangles)),
-        cloud_{mesh.positions},
-        tree_(3, cloud_, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {
-    tree_.buildIndex();
-  }
-  Eigen::Vector3d operator()(const Eigen::Vector3d& p) const {
-    uint32_t i = 0;
-    double d2 = 0.0;
-    return tree_.knnSearch(p.data(), 1, &i, &d2) == 1 ? normals_[i] : Eigen::Vector3d::Zero().eval();
-  }
+FoldCounter::Sides::Sides(const TriangleMesh& mesh)
+    : normals_(unit_vertex_normals(mesh.positions, mesh.triangles)),
+      cloud_{mesh.positions},
+      tree_(3, cloud_, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {
+  tree_.buildIndex();
+}
 
- private:
-  std::vector<Eigen::Vector3d> normals_;
-  PointCloud cloud_;
-  PointTree tree_;
-};
+Eigen::Vector3d FoldCounter::Sides::operator()(const Eigen::Vector3d& p) const {
+  uint32_t i = 0;
+  double d2 = 0.0;
+  return tree_.knnSearch(p.data(), 1, &i, &d2) == 1 ? normals_[i] : Eigen::Vector3d::Zero().eval();
+}
+
+std::vector<uint32_t> FoldCounter::Sides::nearest(const Eigen::Vector3d& p, size_t k) const {
+  std::vector<uint32_t> out(k);
+  std::vector<double> d2(k);
+  out.resize(tree_.knnSearch(p.data(), k, out.data(), d2.data()));
+  return out;
+}
 
 namespace {
 

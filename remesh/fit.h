@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "format/mesh.h"
+#include "remesh/point_cloud.h"
 
 namespace srcodec {
 
@@ -70,7 +71,21 @@ class FoldCounter {
   FoldCount operator()(const std::vector<Eigen::Vector3d>& positions,
                        const std::vector<std::array<int32_t, 3>>& triangles, std::vector<char>* marked = nullptr) const;
 
-  class Sides;  // per point, the unit normal of the nearest vertex of `sides` (fit.cpp)
+  // Per point, the unit normal of the nearest vertex of a mesh: the side of
+  // the input surface a corner off it is on.
+  class Sides {
+   public:
+    explicit Sides(const TriangleMesh& mesh);  // keeps a reference to mesh.positions
+    Eigen::Vector3d operator()(const Eigen::Vector3d& p) const;
+    // The (up to) k vertices of the mesh nearest p, nearest first.
+    std::vector<uint32_t> nearest(const Eigen::Vector3d& p, size_t k) const;
+    const Eigen::Vector3d& normal(uint32_t vertex) const { return normals_[vertex]; }
+
+   private:
+    std::vector<Eigen::Vector3d> normals_;
+    PointCloud cloud_;
+    PointTree tree_;
+  };
 
  private:
   std::unique_ptr<Sides> sides_;

@@ -111,6 +111,22 @@ constexpr size_t kMaxDefaultBase = 4000;
 // size may go down to once the oversampling is done (remesh()).
 constexpr double kSupportedRatio = 6.5;
 
+// Each level's triangles, and the vertices the fit and the untangling leave
+// where they are: the base vertices (the paper's sites, input vertices) and
+// the boundary vertices (on the input's boundary).
+struct LevelsToMove {
+  std::vector<std::vector<std::array<int32_t, 3>>> triangles;
+  std::vector<char> fixed;
+};
+LevelsToMove levels_to_move(const TriangleHierarchy& hierarchy, int32_t levels, size_t base_vertices,
+                            size_t vertices) {
+  LevelsToMove out;
+  for (int32_t l = 0; l <= levels; ++l) out.triangles.push_back(hierarchy.level_triangles(l));
+  out.fixed = boundary_vertices(vertices, out.triangles.back());
+  std::fill(out.fixed.begin(), out.fixed.begin() + static_cast<std::ptrdiff_t>(base_vertices), 1);
+  return out;
+}
+
 }  // namespace
 
 size_t default_base_vertices(size_t input_vertices, size_t components, int levels) {
@@ -323,13 +339,8 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
   for (size_t b = 0; b < base.mesh.positions.size(); ++b) base.mesh.positions[b] = positions[b];  // Lloyd moved them
   const int32_t levels = static_cast<int32_t>(rep.levels.size());
   if (options.fit_surface && levels > 0) {
-    std::vector<std::vector<std::array<int32_t, 3>>> level_triangles;
-    for (int32_t l = 0; l <= levels; ++l) level_triangles.push_back(refined.hierarchy.level_triangles(l));
-    // Base vertices stay input vertices (the paper's sites); boundary
-    // vertices stay on the input's boundary.
-    std::vector<char> fixed = boundary_vertices(positions.size(), level_triangles.back());
-    std::fill(fixed.begin(), fixed.begin() + static_cast<std::ptrdiff_t>(base.mesh.positions.size()), 1);
-    rep.fit = fit_to_surface(mesh, input, level_triangles, fixed, &positions);
+    const LevelsToMove moving = levels_to_move(refined.hierarchy, levels, base.mesh.positions.size(), positions.size());
+    rep.fit = fit_to_surface(mesh, input, moving.triangles, moving.fixed, &positions);
     progress("fit: " + std::to_string(rep.fit.moved) + " vertices moved off the input (mean " +
              std::to_string(rep.fit.mean_offset) + "), " + std::to_string(rep.fit.refused) +
              " moves undone where a triangle would turn, fold or pleat; then " +
@@ -357,6 +368,20 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
              " kept where undoing them folded or pleated); then " +
              std::to_string(rep.coarsening.folds.folded_by_nearest_input) + " folded (recount), " +
              std::to_string(rep.coarsening.folds.pleats) + " pleats, " + std::to_string(rep.coarsening.seconds) + " s");
+  }
+  if (options.fit_surface && options.untangle && out.levels > 0) {
+    const LevelsToMove tangled = levels_to_move(out.hierarchy, out.levels, out.base.positions.size(), out.positions.size());
+    rep.untangle = untangle(input, tangled.triangles, tangled.fixed, &out.positions);
+    const TangleCount &was = rep.untangle.before, &now = rep.untangle.after;
+    auto counts = [](size_t folded, size_t pleats) {
+      return std::to_string(folded) + " folded, " + std::to_string(pleats) + " pleats";
+    };
+    progress("untangle: " + std::to_string(rep.untangle.moved) + " moves in " + std::to_string(rep.untangle.rounds) +
+             " rounds; finest level " + counts(was.folded, was.pleats) + " -> " +
+             counts(now.folded, now.pleats) + "; coarser levels " +
+             counts(was.coarser_folded, was.coarser_pleats) + " -> " +
+             counts(now.coarser_folded, now.coarser_pleats) + ", " +
+             std::to_string(rep.untangle.seconds) + " s");
   }
   return out;
 }

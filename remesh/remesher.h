@@ -12,6 +12,7 @@
 #include "format/mesh.h"
 #include "format/status.h"
 #include "remesh/fit.h"
+#include "remesh/untangle.h"
 #include "remesh/measured_coarsening.h"
 #include "remesh/oversample.h"
 #include "remesh/refine.h"
@@ -50,6 +51,10 @@ struct RemeshOptions {
   // stay. Off: every vertex where the paper's method put it (a site on an
   // input vertex, with the exceptions RefineLevelReport counts).
   bool fit_surface = true;
+  // With fit_surface, last: move the vertices of the triangles still folded,
+  // facing against the input or in a pleat to nearby places that leave
+  // fewer of them (remesh/untangle.h; ours).
+  bool untangle = true;
   std::function<void(const std::string&)> progress;  // one line per stage, may be empty
 };
 
@@ -68,6 +73,7 @@ struct RemeshReport {
   std::vector<RefineLevelReport> levels;
   FitReport fit;  // with RemeshOptions::fit_surface
   CoarseningReport coarsening;  // with RemeshOptions::max_loss_db
+  UntangleReport untangle;      // with RemeshOptions::fit_surface and untangle
 };
 
 // The default base size: the larger the base mesh, the less the

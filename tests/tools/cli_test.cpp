@@ -122,21 +122,40 @@ TEST(Cli, RemeshTextReportNamesLeftoverFolds) {
   test::ScratchDir dir;
   const std::string in = q(test::source_path("data/bunny_npm.obj"));
   const std::string args = " --quiet --levels 3 --scheme linear --samples 20000 " + in + " -o ";
+  // By default the count is the untangling's, of the output.
   auto json = run_srcodec("remesh --json" + args + q(dir.file("a.obj")));
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  auto count = [&](const std::string& key) { return std::to_string(static_cast<size_t>(json_number(json.out, key))); };
+  ASSERT_GT(json_number(json.out, "untangled_folded_by_nearest_input") +
+                json_number(json.out, "untangled_coarser_folded_by_nearest_input") +
+                json_number(json.out, "untangled_pleats") + json_number(json.out, "untangled_coarser_pleats"),
+            0.0)
+      << "this setting no longer folds: pick another for the test";
+  auto text = run_srcodec("remesh" + args + q(dir.file("b.obj")));
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  const std::string line = "folds: " + count("untangled_folded_by_nearest_input") + " triangle(s) of level 3 and " +
+                           count("untangled_coarser_folded_by_nearest_input") +
+                           " of coarser levels face against the input (corners judged by its nearest vertices); " +
+                           count("untangled_pleats") + " and " + count("untangled_coarser_pleats") + " edge(s) pleat";
+  EXPECT_NE(text.out.find(line), std::string::npos) << text.out;
+
+  // Without the untangling, the refinement's own count.
+  const std::string plain = " --no-untangle" + args;
+  json = run_srcodec("remesh --json" + plain + q(dir.file("c.obj")));
   ASSERT_EQ(json.exit_code, 0) << json.err;
   const std::string last = json.out.substr(json.out.rfind("\"level\": 3"));
   const auto folded = static_cast<size_t>(json_number(last, "folded_triangles"));
   const auto coarse = static_cast<size_t>(json_number(last, "coarse_folded_triangles"));
   const auto pleats = static_cast<size_t>(json_number(last, "pleats"));
   ASSERT_GT(folded + coarse + pleats, 0u) << "this setting no longer folds: pick another for the test";
-  auto text = run_srcodec("remesh" + args + q(dir.file("b.obj")));
+  text = run_srcodec("remesh" + plain + q(dir.file("d.obj")));
   ASSERT_EQ(text.exit_code, 0) << text.err;
-  const std::string line = "folds: " + std::to_string(folded) + " triangle(s) of level 3 and " +
-                           std::to_string(coarse) + " of coarser levels face against the input; " +
-                           std::to_string(pleats) + " edge(s) pleat";
-  EXPECT_NE(text.out.find(line), std::string::npos) << text.out;
+  const std::string refined = "folds: " + std::to_string(folded) + " triangle(s) of level 3 and " +
+                              std::to_string(coarse) + " of coarser levels face against the input; " +
+                              std::to_string(pleats) + " edge(s) pleat";
+  EXPECT_NE(text.out.find(refined), std::string::npos) << text.out;
 
-  auto clean = run_srcodec("remesh --quiet --levels 2 --samples 20000 " + in + " -o " + q(dir.file("c.obj")));
+  auto clean = run_srcodec("remesh --quiet --levels 2 --samples 20000 " + in + " -o " + q(dir.file("e.obj")));
   ASSERT_EQ(clean.exit_code, 0) << clean.err;
   EXPECT_EQ(clean.out.find("folds:"), std::string::npos) << clean.out;
 }

@@ -71,7 +71,10 @@ def main():
     print("folded_by_nearest_input; \"folded\" judges a corner off the input by the normal it was given). The fit to")
     print("the input surface (on by default) runs last: \"folded\" is counted before it, \"recount\" and \"pleats\"")
     print("after it (fit_folded_by_nearest_input, fit_pleats), and for \"measured\" rows after the coarsening that")
-    print("follows the fit (coarsened_folded_by_nearest_input, coarsened_pleats).")
+    print("follows the fit (coarsened_folded_by_nearest_input, coarsened_pleats). With the untangling (on by default")
+    print("since the seventeenth session, after the fit and the coarsening) \"recount\" and \"pleats\" are the")
+    print("output's, finest level + coarser levels (untangled_folded_by_nearest_input, untangled_pleats and their")
+    print("coarser_ counterparts).")
     print()
     print("| mesh | run | base | oversampled | finest vertices | triangles | tri % | PSNR dB | vs L5 dB | folded "
           "| recount | pleats | seconds | peak MB |")
@@ -112,6 +115,9 @@ def table(meshes):
             pleats = d["fit_pleats"] if fitted else top.get("pleats", 0)
             if "coarsened_pleats" in d:  # --max-loss: after the coarsening
                 recount, pleats = d["coarsened_folded_by_nearest_input"], d["coarsened_pleats"]
+            if d.get("untangle", False):  # last, the output's: finest + coarser levels
+                recount = f"{d['untangled_folded_by_nearest_input']} + {d['untangled_coarser_folded_by_nearest_input']}"
+                pleats = f"{d['untangled_pleats']} + {d['untangled_coarser_pleats']}"
             print(f"| {mesh} | {name} | {d['base_vertices']} | {d['oversampled_vertices']} | {top['vertices']} "
                   f"| {top['triangles']} | {pct} | {top['psnr']:.2f} | {delta} | {folded} "
                   f"| {recount} | {pleats} | {d['wall']:.1f} "

@@ -114,6 +114,14 @@ Status run_remesh(const RemeshCliOptions& o) {
         .field("fit_mean_offset", report.fit.mean_offset)
         .field("fit_folded_by_nearest_input", report.fit.folded_by_nearest_input)
         .field("fit_pleats", report.fit.pleats)
+        .field("untangle", options.fit_surface && options.untangle)
+        .field("untangle_moved", report.untangle.moved)
+        .field("untangle_rounds", report.untangle.rounds)
+        .field("untangle_seconds", report.untangle.seconds)
+        .field("untangled_folded_by_nearest_input", report.untangle.after.folded)
+        .field("untangled_pleats", report.untangle.after.pleats)
+        .field("untangled_coarser_folded_by_nearest_input", report.untangle.after.coarser_folded)
+        .field("untangled_coarser_pleats", report.untangle.after.coarser_pleats)
         .field("max_loss_db", options.max_loss_db);
     if (options.max_loss_db > 0.0)
       j.field("coarsening_candidates", report.coarsening.candidates)
@@ -130,10 +138,18 @@ Status run_remesh(const RemeshCliOptions& o) {
     // The goal is none; where some are left, the user should know (the JSON
     // has them per level).
     const RefineLevelReport* last = report.levels.empty() ? nullptr : &report.levels.back();
-    if (last && last->folded_triangles + last->coarse_folded_triangles + last->pleats > 0)
+    const TangleCount& left = report.untangle.after;
+    if (report.untangle.rounds > 0) {  // the untangling's count, of the output
+      if (left.folded + left.coarser_folded + left.pleats + left.coarser_pleats > 0)
+        std::printf("folds: %zu triangle(s) of level %d and %zu of coarser levels face against the input (corners "
+                    "judged by its nearest vertices); %zu and %zu edge(s) pleat (their triangles meet at more than "
+                    "150 degrees)\n",
+                    left.folded, srm.levels, left.coarser_folded, left.pleats, left.coarser_pleats);
+    } else if (last && last->folded_triangles + last->coarse_folded_triangles + last->pleats > 0) {
       std::printf("folds: %zu triangle(s) of level %d and %zu of coarser levels face against the input; %zu edge(s) "
                   "pleat (their triangles meet at more than 150 degrees)\n",
                   last->folded_triangles, last->level, last->coarse_folded_triangles, last->pleats);
+    }
     std::printf("wrote %s (level %d) in %.2f s\n", o.output.c_str(), srm.levels, seconds);
   }
   return ok_status();

@@ -37,6 +37,9 @@ void add_remesh_flags(CLI::App* cmd, RemeshFlags& f) {
                 "Leave every vertex where the remeshing put it (on the input's vertices, as in the paper): by "
                 "default the vertices above the base mesh then move along their normals to centre the finest "
                 "level's triangles on the input surface (boundary vertices stay)");
+  cmd->add_flag("!--no-untangle", f.untangle,
+                "After the fit, leave the vertices of triangles still folded or in a pleat where they are: by "
+                "default each moves to the nearby place that leaves fewest of them around it, on every level");
   cmd->add_option("--oversample", f.oversample, "Subdivision steps before remeshing: auto, 0, 1, 2 or 3")
       ->capture_default_str();
   cmd->add_option("--scheme", f.scheme, "Oversampling scheme: butterfly, loop, or linear (keeps the input's facets)")->capture_default_str();
@@ -57,6 +60,7 @@ StatusOr<RemeshOptions> to_remesh_options(const RemeshFlags& o) {
   r.tolerance_db = o.tolerance_db;
   r.max_loss_db = o.max_loss_db;
   r.fit_surface = o.fit_surface;
+  r.untangle = o.untangle;
   if (o.oversample == "auto") {
     r.oversample = -1;
   } else if (o.oversample.size() == 1 && o.oversample[0] >= '0' && o.oversample[0] <= '3') {

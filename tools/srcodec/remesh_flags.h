@@ -19,13 +19,14 @@ struct RemeshFlags {
   double tolerance_db = 0.0;
   double max_loss_db = 0.0;
   bool fit_surface = true;
+  bool untangle = true;
   // Set by add_remesh_flags: without --levels, `levels` is fitted to small
   // inputs (RemeshOptions::fit_levels).
   const CLI::Option* levels_option = nullptr;
 };
 
 // Adds --levels, --base-vertices, --threshold, --uniform, --tolerance, --max-loss, --no-fit-surface,
-// --oversample, --scheme.
+// --no-untangle, --oversample, --scheme.
 void add_remesh_flags(CLI::App* cmd, RemeshFlags& flags);
 StatusOr<RemeshOptions> to_remesh_options(const RemeshFlags& flags);
 

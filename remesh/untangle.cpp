@@ -1,0 +1,239 @@
+#include "remesh/untangle.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <chrono>
+
+#include "remesh/fit.h"
+#include "remesh/geometry.h"
+
+namespace srcodec {
+namespace {
+
+using Triangles = std::vector<std::array<int32_t, 3>>;
+
+// One level's triangles around each vertex, and each triangle's neighbour
+// across each edge (-1 on the boundary, or where more than two meet).
+struct LevelAdjacency {
+  std::vector<int32_t> offsets, around;  // around[offsets[v] .. offsets[v + 1]): the triangles at v
+  std::vector<std::array<int32_t, 3>> across;
+
+  LevelAdjacency(const Triangles& triangles, size_t n) : offsets(n + 1, 0), across(triangles.size()) {
+    for (const auto& t : triangles)
+      for (int32_t v : t) ++offsets[static_cast<size_t>(v) + 1];
+    for (size_t v = 0; v < n; ++v) offsets[v + 1] += offsets[v];
+    around.resize(static_cast<size_t>(offsets[n]));
+    std::vector<int32_t> fill(offsets.begin(), offsets.end() - 1);
+    for (size_t t = 0; t < triangles.size(); ++t)
+      for (int32_t v : triangles[t]) around[static_cast<size_t>(fill[static_cast<size_t>(v)]++)] = static_cast<int32_t>(t);
+    std::vector<std::array<int32_t, 4>> edges;  // lower vertex, higher vertex, triangle, corner
+    edges.reserve(3 * triangles.size());
+    for (size_t t = 0; t < triangles.size(); ++t) {
+      across[t] = {-1, -1, -1};
+      for (int c = 0; c < 3; ++c) {
+        const auto [a, b] = std::minmax(triangles[t][c], triangles[t][(c + 1) % 3]);
+        edges.push_back({a, b, static_cast<int32_t>(t), c});
+      }
+    }
+    std::sort(edges.begin(), edges.end());
+    for (size_t i = 0; i < edges.size();) {
+      size_t j = i;
+      while (j < edges.size() && edges[j][0] == edges[i][0] && edges[j][1] == edges[i][1]) ++j;
+      if (j - i == 2) {
+        across[static_cast<size_t>(edges[i][2])][static_cast<size_t>(edges[i][3])] = edges[i + 1][2];
+        across[static_cast<size_t>(edges[i + 1][2])][static_cast<size_t>(edges[i + 1][3])] = edges[i][2];
+      }
+      i = j;
+    }
+  }
+};
+
+class Judge {
+ public:
+  Judge(const TriangleMesh& sides, const std::vector<Triangles>& levels, size_t n)
+      : levels_(levels), side_at_(sides) {
+    for (const auto& level : levels) adjacency_.emplace_back(level, n);
+  }
+
+  const FoldCounter::Sides& side_at() const { return side_at_; }
+  const LevelAdjacency& adjacency(size_t level) const { return adjacency_[level]; }
+
+  bool folded(const std::vector<Eigen::Vector3d>& x, const std::vector<Eigen::Vector3d>& side,
+              const std::array<int32_t, 3>& t) const {
+    return !(facing(x[t[0]], x[t[1]], x[t[2]], side[t[0]] + side[t[1]] + side[t[2]]) > 1e-9);
+  }
+  static Eigen::Vector3d normal(const std::vector<Eigen::Vector3d>& x, const std::array<int32_t, 3>& t) {
+    return (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]);
+  }
+
+  // The folded triangles and pleats around vertex v, on every level; with
+  // `energy`, also how deep they are: how far each folded triangle's facing
+  // is below folded and each pleat's dihedral cosine past 150 degrees.
+  size_t around(const std::vector<Eigen::Vector3d>& x, const std::vector<Eigen::Vector3d>& side, int32_t v,
+                double* energy = nullptr) const {
+    size_t count = 0;
+    double e = 0.0;
+    for (size_t k = 0; k < levels_.size(); ++k) {
+      const LevelAdjacency& adj = adjacency_[k];
+      const auto first = adj.around.begin() + adj.offsets[static_cast<size_t>(v)];
+      const auto last = adj.around.begin() + adj.offsets[static_cast<size_t>(v) + 1];
+      for (auto it = first; it != last; ++it) {
+        const auto& tri = levels_[k][static_cast<size_t>(*it)];
+        const double f = facing(x[tri[0]], x[tri[1]], x[tri[2]], side[tri[0]] + side[tri[1]] + side[tri[2]]);
+        if (!(f > 1e-9)) {
+          ++count;
+          e += 1e-9 - f;
+        }
+        for (int32_t u : adj.across[static_cast<size_t>(*it)]) {
+          if (u < 0 || (u < *it && std::find(first, last, u) != last)) continue;  // each pair once
+          const Eigen::Vector3d a = normal(x, tri), b = normal(x, levels_[k][static_cast<size_t>(u)]);
+          if (pleat(a, b)) {
+            ++count;
+            e += -a.dot(b) / std::max(a.norm() * b.norm(), 1e-300) - 0.8660254;
+          }
+        }
+      }
+    }
+    if (energy) *energy = e;
+    return count;
+  }
+
+  // Every level's folded triangles and pleats, counted, and per level the
+  // triangles in either marked.
+  TangleCount count(const std::vector<Eigen::Vector3d>& x, const std::vector<Eigen::Vector3d>& side,
+                    std::vector<std::vector<char>>* marked) const {
+    TangleCount out;
+    marked->resize(levels_.size());
+    for (size_t k = 0; k < levels_.size(); ++k) {
+      const Triangles& tris = levels_[k];
+      std::vector<char>& mark = (*marked)[k];
+      mark.assign(tris.size(), 0);
+      size_t folded_n = 0, pleats_n = 0;
+      for (size_t t = 0; t < tris.size(); ++t) {
+        mark[t] = folded(x, side, tris[t]);
+        folded_n += static_cast<size_t>(mark[t]);
+        for (int32_t u : adjacency_[k].across[t])
+          if (u > static_cast<int32_t>(t) && pleat(normal(x, tris[t]), normal(x, tris[static_cast<size_t>(u)]))) {
+            ++pleats_n;
+            mark[t] = mark[static_cast<size_t>(u)] = 1;
+          }
+      }
+      const bool finest = k + 1 == levels_.size();
+      (finest ? out.folded : out.coarser_folded) += folded_n;
+      (finest ? out.pleats : out.coarser_pleats) += pleats_n;
+    }
+    return out;
+  }
+
+ private:
+  const std::vector<Triangles>& levels_;
+  FoldCounter::Sides side_at_;
+  std::vector<LevelAdjacency> adjacency_;
+};
+
+}  // namespace
+
+UntangleReport untangle(const TriangleMesh& sides, const std::vector<Triangles>& levels, const std::vector<char>& fixed,
+                        std::vector<Eigen::Vector3d>* positions, const UntangleOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  UntangleReport report;
+  if (levels.empty() || levels.back().empty() || sides.positions.empty() || sides.triangles.empty()) return report;
+  std::vector<Eigen::Vector3d>& x = *positions;
+  const size_t n = x.size();
+  const Judge judge(sides, levels, n);
+  const FoldCounter::Sides& side_at = judge.side_at();
+  std::vector<Eigen::Vector3d> side(n);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t v = r.begin(); v != r.end(); ++v) side[v] = side_at(x[v]);
+  });
+  const Triangles& fine = levels.back();
+  const LevelAdjacency& fine_adj = judge.adjacency(levels.size() - 1);
+  auto neighbours = [&](int32_t v) {
+    std::vector<int32_t> out;
+    for (int32_t i = fine_adj.offsets[static_cast<size_t>(v)]; i < fine_adj.offsets[static_cast<size_t>(v) + 1]; ++i)
+      for (int32_t u : fine[static_cast<size_t>(fine_adj.around[static_cast<size_t>(i)])])
+        if (u != v) out.push_back(u);
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  };
+  auto movable = [&](int32_t v) { return !(static_cast<size_t>(v) < fixed.size() && fixed[static_cast<size_t>(v)]); };
+
+  std::vector<std::vector<char>> marked;
+  report.before = judge.count(x, side, &marked);
+  report.after = report.before;
+  for (int round = 0; round < options.rounds; ++round) {
+    // The vertices of the tangled triangles of any level, and their
+    // neighbours on the finest.
+    std::vector<char> take(n, 0);
+    for (size_t k = 0; k < levels.size(); ++k)
+      for (size_t t = 0; t < levels[k].size(); ++t)
+        if (marked[k][t])
+          for (int32_t v : levels[k][t]) take[static_cast<size_t>(v)] = 1;
+    std::vector<int32_t> order;
+    for (size_t v = 0; v < n; ++v)
+      if (take[v]) {
+        if (movable(static_cast<int32_t>(v))) order.push_back(static_cast<int32_t>(v));
+        for (int32_t u : neighbours(static_cast<int32_t>(v)))
+          if (movable(u)) order.push_back(u);
+      }
+    std::sort(order.begin(), order.end());
+    order.erase(std::unique(order.begin(), order.end()), order.end());
+
+    size_t moved = 0;
+    for (int32_t v : order) {
+      const size_t vi = static_cast<size_t>(v);
+      double e_now = 0.0;
+      const size_t now = judge.around(x, side, v, &e_now);
+      if (now == 0) continue;
+      const std::vector<int32_t> ring = neighbours(v);
+      if (ring.empty()) continue;
+      Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+      for (int32_t u : ring) centroid += x[static_cast<size_t>(u)];
+      centroid /= static_cast<double>(ring.size());
+      const Eigen::Vector3d was = x[vi], side_was = side[vi];
+      std::vector<Eigen::Vector3d> candidates;
+      for (double w : {1.0, 0.5, 0.25}) {
+        const Eigen::Vector3d q = was + w * (centroid - was);
+        candidates.push_back(q);
+        const std::vector<uint32_t> near = side_at.nearest(q, 1);
+        if (!near.empty()) {
+          const Eigen::Vector3d& normal = side_at.normal(near[0]);
+          candidates.push_back(q - (q - sides.positions[near[0]]).dot(normal) * normal);
+        }
+      }
+      for (uint32_t i : side_at.nearest(centroid, options.input_candidates)) candidates.push_back(sides.positions[i]);
+      for (int32_t u : ring)
+        for (double w : {0.5, 0.8}) candidates.push_back(was + w * (x[static_cast<size_t>(u)] - was));
+      size_t best = now;
+      double e_best = e_now;
+      Eigen::Vector3d best_at = was;
+      for (const Eigen::Vector3d& q : candidates) {
+        x[vi] = q;
+        side[vi] = side_at(q);
+        double e = 0.0;
+        const size_t c = judge.around(x, side, v, &e);
+        if (c < best || (c == best && e < 0.5 * e_best)) {
+          best = c;
+          e_best = e;
+          best_at = q;
+        }
+      }
+      const bool better = best < now || e_best < e_now;
+      x[vi] = best_at;
+      side[vi] = better ? side_at(best_at) : side_was;
+      moved += better;
+    }
+    report.moved += moved;
+    report.rounds = round + 1;
+    report.after = judge.count(x, side, &marked);
+    if (moved == 0) break;
+  }
+  report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return report;
+}
+
+}  // namespace srcodec

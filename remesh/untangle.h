@@ -1,0 +1,62 @@
+// The untangling (ours, not in the paper): after the fit, the vertices of
+// the triangles still folded or in a pleat move, one at a time, to the
+// nearby place that leaves fewest such triangles around them, on every level.
+//
+// The refinement's repairs (remesh/refine.cpp) work on sites, which stay on
+// input vertices, and judge a corner by the normal its site was given; the
+// fit (remesh/fit.h) only refuses moves that would fold more. What both
+// leave is mostly where the input's sheets come closer than a finest edge
+// (beast's lips and claws, ogre's ears), and a few spots of the smooth scans.
+// There a vertex placed anywhere near, not only on an input vertex, often
+// unfolds its triangles.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "format/mesh.h"
+
+namespace srcodec {
+
+struct UntangleOptions {
+  int rounds = 16;              // passes over the tangled vertices, while one moves any
+  size_t input_candidates = 8;  // input vertices tried around a vertex's neighbours' centroid
+};
+
+// The triangles judged tangled (as FoldCounter judges them), on the finest
+// level and on the coarser ones together.
+struct TangleCount {
+  size_t folded = 0;  // facing against the input normals at their corners
+  size_t pleats = 0;  // pairs of neighbours meeting at more than 150 degrees
+  size_t coarser_folded = 0, coarser_pleats = 0;
+};
+
+struct UntangleReport {
+  size_t moved = 0;  // moves kept, over all rounds
+  int rounds = 0;    // rounds run
+  TangleCount before, after;
+  double seconds = 0.0;
+};
+
+// Moves vertices of `levels` (each level's triangles over `positions`; the
+// last is the finest) that are not `fixed`, to leave fewer triangles of any
+// level folded against the normals of the vertices of `sides` (the
+// oversampled input the remesher ran on) nearest their corners, or in a
+// pleat. Each round takes the vertices of those triangles and their
+// neighbours on the finest level, in increasing order, and tries for each:
+// points toward its neighbours' centroid (also pressed onto the tangent
+// plane of the input there), the input vertices nearest that centroid, and
+// points toward each neighbour. The one leaving the fewest folded triangles
+// and pleats around the vertex, all levels counted, is kept when that is
+// fewer than before, or as many but half as deep (by how far past folded
+// and past 150 degrees they are, summed), which lets a later move finish
+// what this one began. Up to `rounds` rounds, while any vertex moves.
+// Deterministic.
+UntangleReport untangle(const TriangleMesh& sides, const std::vector<std::vector<std::array<int32_t, 3>>>& levels,
+                        const std::vector<char>& fixed, std::vector<Eigen::Vector3d>* positions,
+                        const UntangleOptions& options = {});
+
+}  // namespace srcodec

@@ -1,0 +1,91 @@
+#include "remesh/untangle.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "tests/test_util.h"
+
+namespace srcodec {
+namespace {
+
+using Triangles = std::vector<std::array<int32_t, 3>>;
+
+// Two levels over the vertices of a 9 x 9 grid of the unit square: level 1
+// every cell, level 0 the cells of the even rows and columns. The input is
+// the same square, finer.
+struct TwoLevels {
+  std::vector<Eigen::Vector3d> positions;
+  std::vector<Triangles> levels{2};
+  std::vector<char> fixed;  // the boundary
+  static int32_t id(int i, int j) { return j * 9 + i; }
+  TwoLevels() {
+    for (int j = 0; j <= 8; ++j)
+      for (int i = 0; i <= 8; ++i) {
+        positions.emplace_back(i / 8.0, j / 8.0, 0.0);
+        fixed.push_back(i == 0 || j == 0 || i == 8 || j == 8);
+      }
+    for (int step : {2, 1})
+      for (int j = 0; j < 8; j += step)
+        for (int i = 0; i < 8; i += step) {
+          Triangles& level = levels[step == 2 ? 0 : 1];
+          level.push_back({id(i, j), id(i + step, j), id(i + step, j + step)});
+          level.push_back({id(i, j), id(i + step, j + step), id(i, j + step)});
+        }
+  }
+};
+
+// A vertex of the finest level only and one of both levels pushed past
+// their neighbours fold triangles of both levels; the untangling puts them
+// back among their neighbours, and touches nothing far from them.
+TEST(Untangle, UnfoldsPushedVertices) {
+  const TriangleMesh input = test::flat_square(60);
+  TwoLevels grid;
+  const std::vector<Eigen::Vector3d> flat = grid.positions;
+  grid.positions[static_cast<size_t>(TwoLevels::id(5, 5))] += Eigen::Vector3d(1.7, 0.4, 0.0) / 8.0;  // level 1 only
+  grid.positions[static_cast<size_t>(TwoLevels::id(2, 2))] += Eigen::Vector3d(2.6, 0.3, 0.0) / 8.0;  // levels 0 and 1
+  std::vector<Eigen::Vector3d> x = grid.positions;
+  const UntangleReport report = untangle(input, grid.levels, grid.fixed, &x);
+  EXPECT_GT(report.before.folded, 0u);
+  EXPECT_GT(report.before.coarser_folded, 0u);
+  EXPECT_EQ(report.after.folded, 0u);
+  EXPECT_EQ(report.after.pleats, 0u);
+  EXPECT_EQ(report.after.coarser_folded, 0u);
+  EXPECT_EQ(report.after.coarser_pleats, 0u);
+  EXPECT_GE(report.moved, 2u);
+  for (int j = 0; j <= 8; ++j)
+    for (int i = 0; i <= 8; ++i) {
+      const size_t v = static_cast<size_t>(TwoLevels::id(i, j));
+      const bool near_a_push = (std::abs(i - 5) <= 2 && std::abs(j - 5) <= 2) || (std::abs(i - 2) <= 3 && std::abs(j - 2) <= 2);
+      if (grid.fixed[v] || !near_a_push) {
+        EXPECT_EQ(x[v], grid.positions[v]) << "vertex " << i << ", " << j;
+      }
+    }
+  // Deterministic.
+  std::vector<Eigen::Vector3d> again = grid.positions;
+  untangle(input, grid.levels, grid.fixed, &again);
+  EXPECT_EQ(again, x);
+  // Nothing to untangle: nothing moves.
+  std::vector<Eigen::Vector3d> untouched = flat;
+  const UntangleReport none = untangle(input, grid.levels, grid.fixed, &untouched);
+  EXPECT_EQ(none.moved, 0u);
+  EXPECT_EQ(none.before.folded + none.before.pleats + none.before.coarser_folded + none.before.coarser_pleats, 0u);
+  EXPECT_EQ(untouched, flat);
+}
+
+// A fixed vertex stays, folded or not.
+TEST(Untangle, LeavesFixedVertices) {
+  const TriangleMesh input = test::flat_square(60);
+  TwoLevels grid;
+  const size_t pushed = static_cast<size_t>(TwoLevels::id(5, 5));
+  grid.positions[pushed] += Eigen::Vector3d(1.7, 0.4, 0.0) / 8.0;
+  grid.fixed.assign(grid.positions.size(), 1);
+  std::vector<Eigen::Vector3d> x = grid.positions;
+  const UntangleReport report = untangle(input, grid.levels, grid.fixed, &x);
+  EXPECT_GT(report.after.folded, 0u);
+  EXPECT_EQ(report.moved, 0u);
+  EXPECT_EQ(x, grid.positions);
+}
+
+}  // namespace
+}  // namespace srcodec
