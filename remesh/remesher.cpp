@@ -348,6 +348,27 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
              " pleats, " + std::to_string(rep.fit.seconds) + " s");
   }
   SemiRegularMesh out{std::move(base.mesh), std::move(refined.hierarchy), std::move(positions), levels};
+  // The untangling (last; with --max-loss also before the coarsening, so
+  // that its loss is judged against the untangled full refinement).
+  auto untangle_out = [&](SemiRegularMesh* m) {
+    const LevelsToMove tangled = levels_to_move(m->hierarchy, m->levels, m->base.positions.size(), m->positions.size());
+    const UntangleReport r = untangle(input, tangled.triangles, tangled.fixed, &m->positions);
+    const TangleCount &was = r.before, &now = r.after;
+    auto counts = [](size_t folded, size_t pleats) {
+      return std::to_string(folded) + " folded, " + std::to_string(pleats) + " pleats";
+    };
+    progress("untangle: " + std::to_string(r.moved) + " moves in " + std::to_string(r.rounds) +
+             " rounds; finest level " + counts(was.folded, was.pleats) + " -> " + counts(now.folded, now.pleats) +
+             "; coarser levels " + counts(was.coarser_folded, was.coarser_pleats) + " -> " +
+             counts(now.coarser_folded, now.coarser_pleats) + ", " + std::to_string(r.seconds) + " s");
+    if (rep.untangle.rounds == 0) rep.untangle.before = r.before;
+    rep.untangle.after = r.after;
+    rep.untangle.moved += r.moved;
+    rep.untangle.rounds += r.rounds;
+    rep.untangle.seconds += r.seconds;
+  };
+  const bool untangling = options.fit_surface && options.untangle && levels > 0;
+  if (untangling && options.max_loss_db > 0.0) untangle_out(&out);
   if (options.max_loss_db > 0.0 && levels > 0) {
     CoarseningOptions coarsening;
     coarsening.max_loss_db = options.max_loss_db;
@@ -369,20 +390,7 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
              std::to_string(rep.coarsening.folds.folded_by_nearest_input) + " folded (recount), " +
              std::to_string(rep.coarsening.folds.pleats) + " pleats, " + std::to_string(rep.coarsening.seconds) + " s");
   }
-  if (options.fit_surface && options.untangle && out.levels > 0) {
-    const LevelsToMove tangled = levels_to_move(out.hierarchy, out.levels, out.base.positions.size(), out.positions.size());
-    rep.untangle = untangle(input, tangled.triangles, tangled.fixed, &out.positions);
-    const TangleCount &was = rep.untangle.before, &now = rep.untangle.after;
-    auto counts = [](size_t folded, size_t pleats) {
-      return std::to_string(folded) + " folded, " + std::to_string(pleats) + " pleats";
-    };
-    progress("untangle: " + std::to_string(rep.untangle.moved) + " moves in " + std::to_string(rep.untangle.rounds) +
-             " rounds; finest level " + counts(was.folded, was.pleats) + " -> " +
-             counts(now.folded, now.pleats) + "; coarser levels " +
-             counts(was.coarser_folded, was.coarser_pleats) + " -> " +
-             counts(now.coarser_folded, now.coarser_pleats) + ", " +
-             std::to_string(rep.untangle.seconds) + " s");
-  }
+  if (untangling && out.levels > 0) untangle_out(&out);
   return out;
 }
 

@@ -51,9 +51,10 @@ struct RemeshOptions {
   // stay. Off: every vertex where the paper's method put it (a site on an
   // input vertex, with the exceptions RefineLevelReport counts).
   bool fit_surface = true;
-  // With fit_surface, last: move the vertices of the triangles still folded,
-  // facing against the input or in a pleat to nearby places that leave
-  // fewer of them (remesh/untangle.h; ours).
+  // With fit_surface, last: move the vertices of the triangles still folded
+  // or in a pleat to nearby places that leave fewer of them
+  // (remesh/untangle.h; ours). With max_loss_db also before the coarsening,
+  // whose loss is then judged against the untangled full refinement.
   bool untangle = true;
   std::function<void(const std::string&)> progress;  // one line per stage, may be empty
 };
@@ -73,7 +74,9 @@ struct RemeshReport {
   std::vector<RefineLevelReport> levels;
   FitReport fit;  // with RemeshOptions::fit_surface
   CoarseningReport coarsening;  // with RemeshOptions::max_loss_db
-  UntangleReport untangle;      // with RemeshOptions::fit_surface and untangle
+  // With RemeshOptions::fit_surface and untangle; both runs summed with
+  // max_loss_db (`before` the first's, `after` the last's).
+  UntangleReport untangle;
 };
 
 // The default base size: the larger the base mesh, the less the
