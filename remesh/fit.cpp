@@ -92,11 +92,7 @@ namespace {
 // Not folded: facing the way of the corners' sides.
 bool faces_out(const std::vector<Eigen::Vector3d>& p, const std::vector<Eigen::Vector3d>& side,
                const std::array<int32_t, 3>& t) {
-  return facing(p[t[0]], p[t[1]], p[t[2]], side[t[0]] + side[t[1]] + side[t[2]]) > 1e-9;
-}
-
-Eigen::Vector3d triangle_normal(const std::vector<Eigen::Vector3d>& p, const std::array<int32_t, 3>& t) {
-  return (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]);
+  return facing(p, side, t) > kFoldedFacing;
 }
 
 // FoldCounter's count, with each vertex's side given.

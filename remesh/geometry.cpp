@@ -80,6 +80,19 @@ double facing(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen:
   return n.dot(reference) / (r * scale);
 }
 
+double facing(const std::vector<Eigen::Vector3d>& p, const std::vector<Eigen::Vector3d>& side,
+              const std::array<int32_t, 3>& t) {
+  return facing(p[t[0]], p[t[1]], p[t[2]], side[t[0]] + side[t[1]] + side[t[2]]);
+}
+
+Eigen::Vector3d triangle_normal(const std::vector<Eigen::Vector3d>& p, const std::array<int32_t, 3>& t) {
+  return (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]);
+}
+
+double triangle_area(const std::vector<Eigen::Vector3d>& p, const std::array<int32_t, 3>& t) {
+  return 0.5 * triangle_normal(p, t).norm();
+}
+
 bool pleat(const Eigen::Vector3d& normal_t, const Eigen::Vector3d& normal_u) {
   constexpr double kCos150 = -0.86602540378443865;
   return normal_t.dot(normal_u) < kCos150 * normal_t.norm() * normal_u.norm();
@@ -89,8 +102,7 @@ std::vector<Eigen::Vector3d> surface_samples(const TriangleMesh& mesh, size_t co
   std::vector<double> cumulative(mesh.triangles.size());
   double total = 0.0;
   for (size_t t = 0; t < mesh.triangles.size(); ++t) {
-    const auto& tri = mesh.triangles[t];
-    total += 0.5 * (mesh.positions[tri[1]] - mesh.positions[tri[0]]).cross(mesh.positions[tri[2]] - mesh.positions[tri[0]]).norm();
+    total += triangle_area(mesh.positions, mesh.triangles[t]);
     cumulative[t] = total;
   }
   std::vector<Eigen::Vector3d> out;

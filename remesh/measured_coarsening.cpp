@@ -17,10 +17,6 @@
 namespace srcodec {
 namespace {
 
-double area(const std::vector<Eigen::Vector3d>& x, const std::array<int32_t, 3>& t) {
-  return 0.5 * (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]).norm();
-}
-
 // The mean of f over triangle abc by the centroids of its n x n sub-triangles.
 template <class F>
 double grid_mean(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c, int n, F&& f) {
@@ -42,7 +38,7 @@ std::vector<double> squared_to_input(const std::vector<Eigen::Vector3d>& x,
   std::vector<double> out(triangles.size(), 0.0);
   auto measure = [&](size_t t, int n, bool exact) {
     const auto& tri = triangles[t];
-    out[t] = area(x, tri) * grid_mean(x[tri[0]], x[tri[1]], x[tri[2]], n, [&](const Eigen::Vector3d& p) {
+    out[t] = triangle_area(x, tri) * grid_mean(x[tri[0]], x[tri[1]], x[tri[2]], n, [&](const Eigen::Vector3d& p) {
                return exact ? input.exact(p).squared : input(p).squared;
              });
   };
@@ -158,7 +154,7 @@ StatusOr<SemiRegularMesh> coarsen_by_measured_error(const TriangleMesh& input, c
     if (coarse_candidate[t] >= 0) remesh_coarse[coarse_candidate[t]] += coarse_sq[t];
   double fine_area = 0.0;
   for (size_t t = 0; t < fine.size(); ++t) {
-    fine_area += area(x, fine[t]);
+    fine_area += triangle_area(x, fine[t]);
     if (fine_candidate[t] >= 0) remesh_fine[fine_candidate[t]] += fine_sq[t];
     else remesh_rest += fine_sq[t];
   }

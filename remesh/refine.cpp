@@ -1429,14 +1429,14 @@ class Refiner {
     for (const auto& t : triangles_) {
       const double f = srcodec::facing(points_[anchor_[t[0]]], points_[anchor_[t[1]]], points_[anchor_[t[2]]],
                                  corner_normal[t[0]] + corner_normal[t[1]] + corner_normal[t[2]]);
-      folded += !(f > 1e-9);
+      folded += !(f > kFoldedFacing);
     }
     return folded;
   }
 
   // Folded: facing the wrong way, or so thin it has no usable area.
   bool folded(const std::array<int32_t, 3>& tri, int32_t moved, int32_t to) const {
-    return !(facing(tri, moved, to) > 1e-9);
+    return !(facing(tri, moved, to) > kFoldedFacing);
   }
 
   // The mean position of site s's neighbours in the current level's mesh
@@ -1467,7 +1467,7 @@ class Refiner {
     auto add = [&](const std::vector<std::array<int32_t, 3>>& tris, const Adjacency& around) {
       for (const int32_t* t = around.begin(s); t != around.end(s); ++t) {
         const double f = facing(tris[*t], s, to);
-        folds += !(f > 1e-9);
+        folds += !(f > kFoldedFacing);
         worst = std::min(worst, f);
       }
     };

@@ -28,7 +28,8 @@ struct LevelAdjacency {
     around.resize(static_cast<size_t>(offsets[n]));
     std::vector<int32_t> fill(offsets.begin(), offsets.end() - 1);
     for (size_t t = 0; t < triangles.size(); ++t)
-      for (int32_t v : triangles[t]) around[static_cast<size_t>(fill[static_cast<size_t>(v)]++)] = static_cast<int32_t>(t);
+      for (int32_t v : triangles[t])
+        around[static_cast<size_t>(fill[static_cast<size_t>(v)]++)] = static_cast<int32_t>(t);
     std::vector<std::array<int32_t, 4>> edges;  // lower vertex, higher vertex, triangle, corner
     edges.reserve(3 * triangles.size());
     for (size_t t = 0; t < triangles.size(); ++t) {
@@ -61,14 +62,6 @@ class Judge {
   const FoldCounter::Sides& side_at() const { return side_at_; }
   const LevelAdjacency& adjacency(size_t level) const { return adjacency_[level]; }
 
-  bool folded(const std::vector<Eigen::Vector3d>& x, const std::vector<Eigen::Vector3d>& side,
-              const std::array<int32_t, 3>& t) const {
-    return !(facing(x[t[0]], x[t[1]], x[t[2]], side[t[0]] + side[t[1]] + side[t[2]]) > 1e-9);
-  }
-  static Eigen::Vector3d normal(const std::vector<Eigen::Vector3d>& x, const std::array<int32_t, 3>& t) {
-    return (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]);
-  }
-
   // The folded triangles and pleats around vertex v, on every level; with
   // `energy`, also how deep they are: how far each folded triangle's facing
   // is below folded and each pleat's dihedral cosine past 150 degrees.
@@ -82,14 +75,14 @@ class Judge {
       const auto last = adj.around.begin() + adj.offsets[static_cast<size_t>(v) + 1];
       for (auto it = first; it != last; ++it) {
         const auto& tri = levels_[k][static_cast<size_t>(*it)];
-        const double f = facing(x[tri[0]], x[tri[1]], x[tri[2]], side[tri[0]] + side[tri[1]] + side[tri[2]]);
-        if (!(f > 1e-9)) {
+        const double f = facing(x, side, tri);
+        if (!(f > kFoldedFacing)) {
           ++count;
-          e += 1e-9 - f;
+          e += kFoldedFacing - f;
         }
         for (int32_t u : adj.across[static_cast<size_t>(*it)]) {
           if (u < 0 || (u < *it && std::find(first, last, u) != last)) continue;  // each pair once
-          const Eigen::Vector3d a = normal(x, tri), b = normal(x, levels_[k][static_cast<size_t>(u)]);
+          const Eigen::Vector3d a = triangle_normal(x, tri), b = triangle_normal(x, levels_[k][static_cast<size_t>(u)]);
           if (pleat(a, b)) {
             ++count;
             e += -a.dot(b) / std::max(a.norm() * b.norm(), 1e-300) - 0.8660254;
@@ -113,10 +106,11 @@ class Judge {
       mark.assign(tris.size(), 0);
       size_t folded_n = 0, pleats_n = 0;
       for (size_t t = 0; t < tris.size(); ++t) {
-        mark[t] = folded(x, side, tris[t]);
+        mark[t] = !(facing(x, side, tris[t]) > kFoldedFacing);
         folded_n += static_cast<size_t>(mark[t]);
         for (int32_t u : adjacency_[k].across[t])
-          if (u > static_cast<int32_t>(t) && pleat(normal(x, tris[t]), normal(x, tris[static_cast<size_t>(u)]))) {
+          if (u > static_cast<int32_t>(t) &&
+              pleat(triangle_normal(x, tris[t]), triangle_normal(x, tris[static_cast<size_t>(u)]))) {
             ++pleats_n;
             mark[t] = mark[static_cast<size_t>(u)] = 1;
           }
@@ -210,7 +204,7 @@ UntangleReport untangle(const TriangleMesh& sides, const std::vector<Triangles>&
         for (double w : {0.5, 0.8}) candidates.push_back(was + w * (x[static_cast<size_t>(u)] - was));
       size_t best = now;
       double e_best = e_now;
-      Eigen::Vector3d best_at = was;
+      Eigen::Vector3d best_at = was, best_side = side_was;
       for (const Eigen::Vector3d& q : candidates) {
         x[vi] = q;
         side[vi] = side_at(q);
@@ -220,11 +214,12 @@ UntangleReport untangle(const TriangleMesh& sides, const std::vector<Triangles>&
           best = c;
           e_best = e;
           best_at = q;
+          best_side = side[vi];
         }
       }
       const bool better = best < now || e_best < e_now;
       x[vi] = best_at;
-      side[vi] = better ? side_at(best_at) : side_was;
+      side[vi] = best_side;
       moved += better;
     }
     report.moved += moved;
