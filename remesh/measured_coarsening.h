@@ -30,6 +30,14 @@ struct CoarseningOptions {
   // Not the fit's (FitOptions::seed): the fit brings the remesh closest to
   // its own samples, and measured on them the bunny's error was 17% low.
   uint64_t seed = 7;
+  // Then the vertices at the corners of the finest level's unsplit
+  // triangles are fitted again (remesh/fit.h, with `fit`; they were fitted
+  // to the children around them), the result's loss is measured whole, and
+  // more splits are undone, in up to `refit_passes` passes in all, while the
+  // refitted result stays within the limit.
+  bool refit = true;
+  FitOptions fit;
+  int refit_passes = 3;
 };
 
 struct CoarseningReport {
@@ -38,6 +46,11 @@ struct CoarseningReport {
   size_t triangles_before = 0;  // the finest level's
   size_t triangles_after = 0;
   double estimated_loss_db = 0.0;  // of the result, against the full refinement (the metric's own may differ a little)
+  // Of the first pass's choice before its refit, measured as the refit one
+  // (when there is none, estimated_loss_db).
+  double estimated_loss_before_refit_db = 0.0;
+  size_t refit = 0;                             // vertices fitted again
+  int passes = 1;                               // choices made and kept
   size_t kept_for_folds = 0;       // splits kept because undoing them folded or pleated a triangle
   FoldCount folds;                 // the finest level's, after (as FitReport's)
   double seconds = 0.0;
@@ -53,11 +66,14 @@ struct CoarseningReport {
 // taken in that order, with the balance and closure splits they bring
 // (TriangleHierarchy::replayed), whose estimated PSNR (from the larger
 // mean square of the two directions, as the metric's) is within
-// max_loss_db of all splits'. Vertices keep their positions; a triangle
-// left unsplit next to a split one is bisected (green) by the closure. Then
-// the splits whose undoing left a triangle of the finest level folded or in
-// a pleat (judged as the fit judges them, by the normals of `sides`, the
-// oversampled input the remesher ran on) are put back, until none is.
+// max_loss_db of all splits'. A triangle left unsplit next to a split one
+// is bisected (green) by the closure. Then the splits whose undoing left a
+// triangle of the finest level folded or in a pleat (judged as the fit
+// judges them, by the normals of `sides`, the oversampled input the
+// remesher ran on) are put back, until none is. Vertices keep their
+// positions, but with options.refit, the corners of the unsplit triangles
+// (not the base's or the boundary's), which are fitted again to `input`;
+// then further passes (CoarseningOptions::refit).
 //
 // Fails (kInvalidArgument) when max_loss_db is not in (0, 60].
 StatusOr<SemiRegularMesh> coarsen_by_measured_error(const TriangleMesh& input, const TriangleMesh& sides,

@@ -372,6 +372,7 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
   if (options.max_loss_db > 0.0 && levels > 0) {
     CoarseningOptions coarsening;
     coarsening.max_loss_db = options.max_loss_db;
+    coarsening.refit = options.fit_surface;  // --no-fit-surface keeps the sites where they are
     SRCODEC_ASSIGN_OR_RETURN(out, coarsen_by_measured_error(mesh, input, out, coarsening, &rep.coarsening));
     // The level reports: the last one's splits are those kept (fewer
     // levels when none is).
@@ -386,7 +387,9 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
              " undone, " + std::to_string(rep.coarsening.triangles_before) + " -> " +
              std::to_string(rep.coarsening.triangles_after) + " triangles, estimated loss " +
              std::to_string(rep.coarsening.estimated_loss_db) + " dB (" + std::to_string(rep.coarsening.kept_for_folds) +
-             " kept where undoing them folded or pleated); then " +
+             " kept where undoing them folded or pleated; " + std::to_string(rep.coarsening.refit) +
+             " vertices fitted again, " + std::to_string(rep.coarsening.passes) + " pass(es), " +
+             std::to_string(rep.coarsening.estimated_loss_before_refit_db) + " dB before the first refit); then " +
              std::to_string(rep.coarsening.folds.folded_by_nearest_input) + " folded (recount), " +
              std::to_string(rep.coarsening.folds.pleats) + " pleats, " + std::to_string(rep.coarsening.seconds) + " s");
   }

@@ -40,7 +40,9 @@ struct RemeshOptions {
   // Adaptive by measured error (remesh/measured_coarsening.h, ours): after
   // the uniform refinement and the fit, the last level's splits that gain
   // least are undone while the estimated PSNR stays within this many dB of
-  // the full refinement's. Needs `uniform`, no tolerance; 0 turns it off.
+  // the full refinement's; with fit_surface, the corners of the triangles
+  // left unsplit are then fitted again, and more splits undone while the
+  // result stays within it. Needs `uniform`, no tolerance; 0 turns it off.
   double max_loss_db = 0.0;
   int oversample = -1;     // Butterfly/Loop steps 0..3; -1 = auto, per component (remesher.cpp)
   OversampleScheme scheme = OversampleScheme::kButterfly;

@@ -128,6 +128,9 @@ Status run_remesh(const RemeshCliOptions& o) {
           .field("coarsening_undone", report.coarsening.undone)
           .field("coarsening_estimated_loss_db", report.coarsening.estimated_loss_db)
           .field("coarsening_kept_for_folds", report.coarsening.kept_for_folds)
+          .field("coarsening_estimated_loss_before_refit_db", report.coarsening.estimated_loss_before_refit_db)
+          .field("coarsening_refit", report.coarsening.refit)
+          .field("coarsening_passes", report.coarsening.passes)
           .field("coarsening_seconds", report.coarsening.seconds)
           .field("coarsened_folded_by_nearest_input", report.coarsening.folds.folded_by_nearest_input)
           .field("coarsened_pleats", report.coarsening.folds.pleats);

@@ -28,7 +28,8 @@ void add_remesh_flags(CLI::App* cmd, RemeshFlags& f) {
   cmd->add_option("--max-loss", f.max_loss_db,
                   "Adaptive by measured error: refine uniformly and fit, then undo the last level's splits that "
                   "gain least (error measured both ways against the input) while the estimated PSNR stays within "
-                  "this many dB of the full refinement's; e.g. 0.5")
+                  "this many dB of the full refinement's; the unsplit triangles' corners are fitted again, and "
+                  "more splits undone while the result stays within it; e.g. 0.5")
       ->check(kFiniteNumber)
       ->check(CLI::Range(0.01, 60.0))
       ->excludes(threshold)
