@@ -322,21 +322,22 @@ StatusOr<SemiRegularMesh> coarsen_by_measured_error(const TriangleMesh& input, c
   // The refitted mesh, measured whole, is further from the limit than the
   // choice's estimate (by the pieces of each candidate, which is cautious:
   // the bunny's 0.40 dB choice measured 0.29 before its refit, 0.15 after):
-  // undo more splits, budgeting as much more as that gap (half as much after
-  // a try that went past the limit), while the refitted result stays within
-  // the limit.
-  double budget = options.max_loss_db, step = options.max_loss_db - best.loss_db;
+  // undo more splits, budgeting as much more as the gap to whole_margin x
+  // the limit (half as much after a try that went past it), while the
+  // refitted result stays within that.
+  const double limit = options.whole_margin * options.max_loss_db;
+  double budget = options.max_loss_db, step = limit - best.loss_db;
   for (int pass = 1; pass < options.refit_passes && best.refit > 0 && step > 0.0; ++pass) {
     SRCODEC_ASSIGN_OR_RETURN(Choice more, coarsened(budget + step));
     if (more.split >= best.choice.split) break;
     Result r = made(std::move(more), nullptr);
-    if (!(r.loss_db <= options.max_loss_db)) {
+    if (!(r.loss_db <= limit)) {
       step *= 0.5;
       continue;
     }
     budget += step;
     best = std::move(r);
-    step = options.max_loss_db - best.loss_db;
+    step = limit - best.loss_db;
     ++rep.passes;
   }
   rep.undone = m - best.choice.split;

@@ -509,7 +509,7 @@ TEST(Remesher, MaxLossKeepsTheSplitsThatGain) {
   // to 0.26 dB.
   EXPECT_GT(psnr_against(square, o->level_mesh(3)), psnr_against(square, p->level_mesh(3)));
   EXPECT_LT(one_r.estimated_loss_db, one_r.estimated_loss_before_refit_db);
-  // 2577 triangles against 2744, at 73.18 dB.
+  // 2677 triangles against 2744, at 73.28 dB (whole measure 0.32 dB).
   EXPECT_LE(passes_r.estimated_loss_db, 0.5);
   EXPECT_GT(passes_r.passes, 1);
   EXPECT_LT(m->level_mesh(3).triangles.size(), o->level_mesh(3).triangles.size());
