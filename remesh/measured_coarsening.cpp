@@ -123,8 +123,21 @@ StatusOr<SemiRegularMesh> coarsen_by_measured_error(const TriangleMesh& input, c
   double in_rest = 0.0, remesh_rest = 0.0;
   const std::vector<Eigen::Vector3d> samples =
       surface_samples(input, options.input_samples_per_vertex * x.size(), options.seed);
+  // Fresh samples of the input, for the refit's whole measure (below), and
+  // their mean square distance to the full refinement.
+  std::vector<Eigen::Vector3d> fresh;
+  if (options.refit) fresh = surface_samples(input, samples.size(), options.seed + 1);
+  auto mean_square_to = [&](const NearestTriangle& near) {
+    std::vector<double> d(fresh.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, fresh.size(), 4096), [&](const tbb::blocked_range<size_t>& b) {
+      for (size_t i = b.begin(); i != b.end(); ++i) d[i] = near(fresh[i]).squared;
+    });
+    return std::accumulate(d.begin(), d.end(), 0.0) / static_cast<double>(std::max<size_t>(fresh.size(), 1));
+  };
+  double fresh_in_full = 0.0;
   {
     const NearestTriangle near_coarse(x, coarse), near_fine(x, fine);
+    if (options.refit) fresh_in_full = mean_square_to(near_fine);
     std::vector<int32_t> under(samples.size(), -1);
     std::vector<double> d_coarse(samples.size(), 0.0), d_fine(samples.size(), 0.0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, samples.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
@@ -260,21 +273,10 @@ StatusOr<SemiRegularMesh> coarsen_by_measured_error(const TriangleMesh& input, c
     double loss_db = 0.0;
     size_t refit = 0;
   };
-  // Fresh samples of the input, and the full refinement's loss by them.
-  std::vector<Eigen::Vector3d> fresh;
-  if (options.refit) fresh = surface_samples(input, samples.size(), options.seed + 1);
-  auto fresh_mean_square = [&](const std::vector<Eigen::Vector3d>& p,
-                               const std::vector<std::array<int32_t, 3>>& triangles) {
-    const NearestTriangle near(p, triangles);
-    std::vector<double> d(fresh.size());
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, fresh.size(), 4096), [&](const tbb::blocked_range<size_t>& b) {
-      for (size_t i = b.begin(); i != b.end(); ++i) d[i] = near(fresh[i]).squared;
-    });
-    return std::accumulate(d.begin(), d.end(), 0.0) / static_cast<double>(std::max<size_t>(fresh.size(), 1));
-  };
+  // The full refinement's mean square by the fresh samples.
   double remesh_full = remesh_rest;
   for (size_t c = 0; c < m; ++c) remesh_full += remesh_fine[c];
-  const double fresh_full = options.refit ? std::max(fresh_mean_square(x, fine), remesh_full * per_area) : full;
+  const double fresh_full = options.refit ? std::max(fresh_in_full, remesh_full * per_area) : full;
   // A mesh's loss: mean squares both ways, as `full`'s, but by fresh samples of
   // the input (those that chose the splits to undo favour their own
   // choice; on the smooth scans the remesh's side decides, and nothing
@@ -285,7 +287,7 @@ StatusOr<SemiRegularMesh> coarsen_by_measured_error(const TriangleMesh& input, c
                      const std::vector<char>& unsplit) {
     const std::vector<double> sq = squared_to_input(p, finest, std::vector<char>(finest.size(), 0), near_input, &unsplit);
     const double rm = std::accumulate(sq.begin(), sq.end(), 0.0) * per_area;
-    return 10.0 * std::log10(std::max(fresh_mean_square(p, finest), rm) / fresh_full);
+    return 10.0 * std::log10(std::max(mean_square_to(NearestTriangle(p, finest)), rm) / fresh_full);
   };
   auto made = [&](Choice choice, double* loss_before_refit) {
     Result r;
@@ -298,22 +300,22 @@ StatusOr<SemiRegularMesh> coarsen_by_measured_error(const TriangleMesh& input, c
     r.choice = std::move(choice);
     if (loss_before_refit) *loss_before_refit = r.loss_db;
     if (!options.refit || r.mesh.levels < 1) return r;
-    std::vector<std::vector<std::array<int32_t, 3>>> levels;
-    for (int32_t l = 0; l <= r.mesh.levels; ++l) levels.push_back(r.mesh.hierarchy.level_triangles(l));
-    const auto& finest = levels.back();
+    const LevelsToMove moving =
+        levels_to_move(r.mesh.hierarchy, r.mesh.levels, r.mesh.base.positions.size(), r.mesh.positions.size());
+    const auto& finest = moving.triangles.back();
     // The finest level's triangles left unsplit (their corners are coarser).
     std::vector<char> unsplit(finest.size());
     for (size_t t = 0; t < finest.size(); ++t)
       unsplit[t] = std::all_of(finest[t].begin(), finest[t].end(),
                                [&](int32_t v) { return r.mesh.hierarchy.vertex_level(v) < top; });
-    std::vector<char> fixed(r.mesh.positions.size(), 1), boundary = boundary_vertices(fixed.size(), finest);
+    std::vector<char> fixed(r.mesh.positions.size(), 1);
     for (size_t t = 0; t < finest.size(); ++t)
       if (unsplit[t])
-        for (int32_t v : finest[t]) fixed[v] = boundary[v] || r.mesh.hierarchy.vertex_level(v) == 0;
+        for (int32_t v : finest[t]) fixed[v] = moving.fixed[v];
     r.refit = static_cast<size_t>(std::count(fixed.begin(), fixed.end(), 0));
     if (r.refit == 0) return r;
     if (loss_before_refit) *loss_before_refit = loss_of(r.mesh.positions, finest, unsplit);
-    fit_to_surface(input, sides, levels, fixed, &r.mesh.positions, options.fit);
+    fit_to_surface(input, sides, moving.triangles, fixed, &r.mesh.positions, options.fit);
     r.loss_db = loss_of(r.mesh.positions, finest, unsplit);
     return r;
   };

@@ -111,22 +111,6 @@ constexpr size_t kMaxDefaultBase = 4000;
 // size may go down to once the oversampling is done (remesh()).
 constexpr double kSupportedRatio = 6.5;
 
-// Each level's triangles, and the vertices the fit and the untangling leave
-// where they are: the base vertices (the paper's sites, input vertices) and
-// the boundary vertices (on the input's boundary).
-struct LevelsToMove {
-  std::vector<std::vector<std::array<int32_t, 3>>> triangles;
-  std::vector<char> fixed;
-};
-LevelsToMove levels_to_move(const TriangleHierarchy& hierarchy, int32_t levels, size_t base_vertices,
-                            size_t vertices) {
-  LevelsToMove out;
-  for (int32_t l = 0; l <= levels; ++l) out.triangles.push_back(hierarchy.level_triangles(l));
-  out.fixed = boundary_vertices(vertices, out.triangles.back());
-  std::fill(out.fixed.begin(), out.fixed.begin() + static_cast<std::ptrdiff_t>(base_vertices), 1);
-  return out;
-}
-
 }  // namespace
 
 size_t default_base_vertices(size_t input_vertices, size_t components, int levels) {

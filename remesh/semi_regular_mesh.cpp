@@ -1,5 +1,10 @@
 #include "remesh/semi_regular_mesh.h"
 
+#include <algorithm>
+#include <cstddef>
+
+#include "remesh/geometry.h"
+
 namespace srcodec {
 
 TriangleMesh SemiRegularMesh::level_mesh(int32_t level) const {
@@ -23,6 +28,15 @@ TriangleMesh compact_mesh(const std::vector<Eigen::Vector3d>& positions,
   mesh.triangles.reserve(triangles.size());
   for (const auto& t : triangles) mesh.triangles.push_back({index[t[0]], index[t[1]], index[t[2]]});
   return mesh;
+}
+
+LevelsToMove levels_to_move(const TriangleHierarchy& hierarchy, int32_t levels, size_t base_vertices,
+                            size_t vertices) {
+  LevelsToMove out;
+  for (int32_t l = 0; l <= levels; ++l) out.triangles.push_back(hierarchy.level_triangles(l));
+  out.fixed = boundary_vertices(vertices, out.triangles.back());
+  std::fill(out.fixed.begin(), out.fixed.begin() + static_cast<std::ptrdiff_t>(base_vertices), 1);
+  return out;
 }
 
 }  // namespace srcodec

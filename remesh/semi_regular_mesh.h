@@ -38,4 +38,16 @@ struct SemiRegularMesh {
 TriangleMesh compact_mesh(const std::vector<Eigen::Vector3d>& positions,
                           const std::vector<std::array<int32_t, 3>>& triangles);
 
+// Each level's triangles (levels 0 to `levels` of `hierarchy`), and the
+// vertices the fit, the untangling and the coarsening's refit leave where
+// they are: the base vertices (ids below `base_vertices`: the paper's sites,
+// input vertices) and the boundary vertices of the finest level (on the
+// input's boundary), among `vertices`.
+struct LevelsToMove {
+  std::vector<std::vector<std::array<int32_t, 3>>> triangles;
+  std::vector<char> fixed;
+};
+LevelsToMove levels_to_move(const TriangleHierarchy& hierarchy, int32_t levels, size_t base_vertices,
+                            size_t vertices);
+
 }  // namespace srcodec
