@@ -95,7 +95,8 @@ bool faces_out(const std::vector<Eigen::Vector3d>& p, const std::vector<Eigen::V
   return facing(p, side, t) > kFoldedFacing;
 }
 
-// FoldCounter's count, with each vertex's side given.
+}  // namespace
+
 FoldCount count_by_sides(const std::vector<Eigen::Vector3d>& positions, const std::vector<Eigen::Vector3d>& side,
                          const std::vector<std::array<int32_t, 3>>& triangles, std::vector<char>* marked) {
   FoldCount count;
@@ -112,8 +113,6 @@ FoldCount count_by_sides(const std::vector<Eigen::Vector3d>& positions, const st
     }
   return count;
 }
-
-}  // namespace
 
 FitReport fit_to_surface(const TriangleMesh& input, const TriangleMesh& sides,
                          const std::vector<std::vector<std::array<int32_t, 3>>>& levels, const std::vector<char>& fixed,

@@ -64,6 +64,10 @@ struct FoldCount {
   size_t folded_by_nearest_input = 0;
   size_t pleats = 0;
 };
+// FoldCounter's count, with each vertex's side (the normal judging it) given.
+FoldCount count_by_sides(const std::vector<Eigen::Vector3d>& positions, const std::vector<Eigen::Vector3d>& side,
+                         const std::vector<std::array<int32_t, 3>>& triangles, std::vector<char>* marked = nullptr);
+
 class FoldCounter {
  public:
   explicit FoldCounter(const TriangleMesh& sides);  // keeps a reference to it

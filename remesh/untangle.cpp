@@ -101,23 +101,10 @@ class Judge {
     TangleCount out;
     marked->resize(levels_.size());
     for (size_t k = 0; k < levels_.size(); ++k) {
-      const Triangles& tris = levels_[k];
-      std::vector<char>& mark = (*marked)[k];
-      mark.assign(tris.size(), 0);
-      size_t folded_n = 0, pleats_n = 0;
-      for (size_t t = 0; t < tris.size(); ++t) {
-        mark[t] = !(facing(x, side, tris[t]) > kFoldedFacing);
-        folded_n += static_cast<size_t>(mark[t]);
-        for (int32_t u : adjacency_[k].across[t])
-          if (u > static_cast<int32_t>(t) &&
-              pleat(triangle_normal(x, tris[t]), triangle_normal(x, tris[static_cast<size_t>(u)]))) {
-            ++pleats_n;
-            mark[t] = mark[static_cast<size_t>(u)] = 1;
-          }
-      }
+      const FoldCount c = count_by_sides(x, side, levels_[k], &(*marked)[k]);
       const bool finest = k + 1 == levels_.size();
-      (finest ? out.folded : out.coarser_folded) += folded_n;
-      (finest ? out.pleats : out.coarser_pleats) += pleats_n;
+      (finest ? out.folded : out.coarser_folded) += c.folded_by_nearest_input;
+      (finest ? out.pleats : out.coarser_pleats) += c.pleats;
     }
     return out;
   }

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "remesh/fit.h"
 #include "tests/test_util.h"
 
 namespace srcodec {
@@ -85,6 +86,26 @@ TEST(Untangle, LeavesFixedVertices) {
   EXPECT_GT(report.after.folded, 0u);
   EXPECT_EQ(report.moved, 0u);
   EXPECT_EQ(x, grid.positions);
+}
+
+// Two steep triangles hanging from one edge, both facing up but meeting at
+// more than 150 degrees: a pleat, and both its triangles are marked (the
+// untangling takes the vertices of the marked ones). Neither is folded.
+TEST(FoldCount, MarksBothTrianglesOfAPleat) {
+  const std::vector<Eigen::Vector3d> x = {
+      {0.5, 0.0, 0.0}, {0.5, 1.0, 0.0}, {0.45, 0.5, -1.0}, {0.55, 0.5, -1.0}};
+  const Triangles ridge = {{0, 1, 2}, {1, 0, 3}};
+  const std::vector<Eigen::Vector3d> up(x.size(), Eigen::Vector3d::UnitZ());
+  std::vector<char> marked;
+  const FoldCount count = count_by_sides(x, up, ridge, &marked);
+  EXPECT_EQ(count.folded_by_nearest_input, 0u);
+  EXPECT_EQ(count.pleats, 1u);
+  EXPECT_EQ(marked, (std::vector<char>{1, 1}));
+  // The same judged by the input's normals (a flat square facing up).
+  const TriangleMesh input = test::flat_square(10);
+  const FoldCount judged = FoldCounter(input)(x, ridge, &marked);
+  EXPECT_EQ(judged.pleats, 1u);
+  EXPECT_EQ(marked, (std::vector<char>{1, 1}));
 }
 
 }  // namespace
