@@ -1,5 +1,5 @@
 """Triangle meshes as numpy arrays, for the benchmark scripts in this folder
-(adaptive_bound.py, fold_recount.py): reading OBJ files and finding the
+(adaptive_bound.py, error_hotspots.py, fold_recount.py): reading OBJ files and finding the
 nearest triangle of a mesh to many points."""
 import numpy as np
 from scipy.spatial import cKDTree
