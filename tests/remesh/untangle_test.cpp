@@ -90,7 +90,8 @@ TEST(Untangle, LeavesFixedVertices) {
 
 // Two steep triangles hanging from one edge, both facing up but meeting at
 // more than 150 degrees: a pleat, and both its triangles are marked (the
-// untangling takes the vertices of the marked ones). Neither is folded.
+// untangling tries the marked triangles' vertices and their neighbours; its
+// own count once lost the second mark). Neither is folded.
 TEST(FoldCount, MarksBothTrianglesOfAPleat) {
   const std::vector<Eigen::Vector3d> x = {
       {0.5, 0.0, 0.0}, {0.5, 1.0, 0.0}, {0.45, 0.5, -1.0}, {0.55, 0.5, -1.0}};
