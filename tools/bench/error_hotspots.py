@@ -29,9 +29,31 @@ PLACES = 6             # places printed per direction
 CANDIDATES = 40        # triangles (nearest centroids first) searched per sample
 
 
+def triangle_areas(positions, triangles):
+    a, b, c = (positions[triangles[:, k]] for k in range(3))
+    return 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1)
+
+
+def checked_obj(path):
+    """load_obj, with a one-line error naming the file for what the sampling cannot use."""
+    try:
+        positions, triangles = load_obj(path)
+    except (ValueError, IndexError) as e:
+        raise ValueError(f"{path}: {e}") from e
+    if len(triangles) == 0:
+        raise ValueError(f"{path}: no triangles")
+    if triangles.min() < 0 or triangles.max() >= len(positions):
+        raise ValueError(f"{path}: a face uses a vertex the file does not have")
+    if not np.isfinite(positions[np.unique(triangles)]).all():
+        raise ValueError(f"{path}: a vertex of a face has a non-finite coordinate")
+    if not triangle_areas(positions, triangles).sum() > 0:
+        raise ValueError(f"{path}: no triangle has an area")
+    return positions, triangles
+
+
 def surface_samples(positions, triangles, n, rng):
     a, b, c = (positions[triangles[:, k]] for k in range(3))
-    area = 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1)
+    area = triangle_areas(positions, triangles)
     pick = rng.choice(len(triangles), size=n, p=area / area.sum())
     r = rng.random((n, 2))
     flip = r.sum(1) > 1
@@ -46,6 +68,9 @@ def psnr(rms, diag):
 def report(name, points, d2, diag):
     total = d2.sum()
     rms = np.sqrt(d2.mean())
+    if not total > 0:
+        print(f"{name}: every sample lies on the other surface")
+        return
     order = np.argsort(-d2)
     worst = order[:max(1, int(WORST_FRACTION * len(d2)))]
     print(f"{name}: rms {rms:.4g}, psnr {psnr(rms, diag):.2f} dB; "
@@ -72,12 +97,10 @@ def main():
         seed = int(sys.argv[4]) if len(sys.argv) > 4 else 1
         if samples < 1000:
             raise ValueError(f"SAMPLES is {samples}; use at least 1000")
-        ip, it = load_obj(sys.argv[1])
-        rp, rt = load_obj(sys.argv[2])
+        ip, it = checked_obj(sys.argv[1])
+        rp, rt = checked_obj(sys.argv[2])
     except (OSError, ValueError, IndexError) as e:
         sys.exit(f"error: {e}")
-    if len(it) == 0 or len(rt) == 0:
-        sys.exit("error: a mesh with no triangles")
     used = ip[np.unique(it)]
     diag = np.linalg.norm(used.max(0) - used.min(0))
     rng = np.random.default_rng(seed)
