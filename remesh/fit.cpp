@@ -139,6 +139,25 @@ FitReport fit_to_surface(const TriangleMesh& input, const TriangleMesh& sides,
   std::vector<int32_t> owner(samples.size());
   std::vector<Eigen::Vector3d> weight(samples.size());
   std::vector<double> offset_of(samples.size());
+  // The other way: four points of each triangle of the remesh (its centroid
+  // and the points halfway between it and each corner), each measured to the
+  // nearest point of the input exactly (the input's slivers can lie nearer
+  // than the triangles with the nearest centroids), weighted by a quarter of
+  // the triangle's area times the input samples' density.
+  const bool both_ways = options.remesh_weight > 0.0;
+  std::unique_ptr<NearestTriangle> to_input;
+  double density = 0.0;
+  if (both_ways) {
+    to_input = std::make_unique<NearestTriangle>(input.positions, input.triangles, /*exact_search=*/true);
+    double area = 0.0;
+    for (const auto& t : input.triangles) area += triangle_area(input.positions, t);
+    density = area > 0.0 ? static_cast<double>(samples.size()) / area : 0.0;
+  }
+  static constexpr double kAt[4][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3},
+                                       {2.0 / 3, 1.0 / 6, 1.0 / 6},
+                                       {1.0 / 6, 2.0 / 3, 1.0 / 6},
+                                       {1.0 / 6, 1.0 / 6, 2.0 / 3}};
+  std::vector<std::array<double, 4>> offset_to_input(both_ways ? fine.size() : 0);
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
     const NearestTriangle nearest(x, fine);
     // Each sample's nearest triangle, where on it, and its signed distance
@@ -170,6 +189,31 @@ FitReport fit_to_surface(const TriangleMesh& input, const TriangleMesh& sides,
         const int32_t v = fine[owner[i]][c];
         sum[v] += weight[i][c] * offset_of[i];
         mass[v] += weight[i][c];
+      }
+    }
+    if (both_ways) {
+      tbb::parallel_for(tbb::blocked_range<size_t>(0, fine.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t t = r.begin(); t != r.end(); ++t) {
+          const auto& tri = fine[t];
+          const Eigen::Vector3d normal = triangle_normal(x, tri);
+          const double len = normal.norm();
+          for (int k = 0; k < 4; ++k) {
+            offset_to_input[t][k] = 0.0;
+            if (!(len > 0.0)) continue;
+            const Eigen::Vector3d q = kAt[k][0] * x[tri[0]] + kAt[k][1] * x[tri[1]] + kAt[k][2] * x[tri[2]];
+            const NearestTriangle::Hit hit = to_input->exact(q);
+            if (hit.triangle >= 0) offset_to_input[t][k] = (hit.point - q).dot(normal) / len;
+          }
+        }
+      });
+      for (size_t t = 0; t < fine.size(); ++t) {
+        const auto& tri = fine[t];
+        const double w = options.remesh_weight * density * triangle_area(x, tri) / 4.0;
+        for (int k = 0; k < 4; ++k)
+          for (int c = 0; c < 3; ++c) {
+            sum[tri[c]] += w * kAt[k][c] * offset_to_input[t][k];
+            mass[tri[c]] += w * kAt[k][c];
+          }
       }
     }
     const std::vector<Eigen::Vector3d> normals = unit_vertex_normals(x, fine);
