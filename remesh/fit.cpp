@@ -158,6 +158,8 @@ FitReport fit_to_surface(const TriangleMesh& input, const TriangleMesh& sides,
                                        {1.0 / 6, 2.0 / 3, 1.0 / 6},
                                        {1.0 / 6, 1.0 / 6, 2.0 / 3}};
   std::vector<std::array<double, 4>> offset_to_input(both_ways ? fine.size() : 0);
+  // Each point's nearest input triangle, where the next search starts.
+  std::vector<std::array<int32_t, 4>> input_triangle(both_ways ? fine.size() : 0, {-1, -1, -1, -1});
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
     const NearestTriangle nearest(x, fine);
     // Each sample's nearest triangle, where on it, and its signed distance
@@ -201,7 +203,10 @@ FitReport fit_to_surface(const TriangleMesh& input, const TriangleMesh& sides,
             offset_to_input[t][k] = 0.0;
             if (!(len > 0.0)) continue;
             const Eigen::Vector3d q = kAt[k][0] * x[tri[0]] + kAt[k][1] * x[tri[1]] + kAt[k][2] * x[tri[2]];
-            const NearestTriangle::Hit hit = to_input->exact(q);
+            // Last iteration's, or in the first this triangle's previous point's.
+            const int32_t from = input_triangle[t][k] >= 0 || k == 0 ? input_triangle[t][k] : input_triangle[t][k - 1];
+            const NearestTriangle::Hit hit = to_input->exact(q, from);
+            input_triangle[t][k] = hit.triangle;
             if (hit.triangle >= 0) offset_to_input[t][k] = (hit.point - q).dot(normal) / len;
           }
         }

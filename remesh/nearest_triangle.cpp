@@ -74,24 +74,48 @@ NearestTriangle::Hit NearestTriangle::operator()(const Eigen::Vector3d& q) const
   return hit;
 }
 
-NearestTriangle::Hit NearestTriangle::exact(const Eigen::Vector3d& q) const {
-  Hit hit = (*this)(q);
-  if (hit.triangle < 0 || cover_.empty()) return hit;
-  const double bound = std::sqrt(hit.squared) + reach_;
-  std::vector<std::pair<uint32_t, double>> within;
-  nanoflann::SearchParams params;
-  params.sorted = false;
-  cover_tree_.radiusSearch(q.data(), bound * bound, within, params);
-  std::sort(within.begin(), within.end());  // by covering point: the same order whatever the tree's
-  int32_t last = -1;
-  for (const auto& [k, d2] : within) {
-    const int32_t t = cover_triangle_[k];
-    if (t == last || std::sqrt(d2) - reach_ >= std::sqrt(hit.squared)) continue;
-    last = t;
-    const Eigen::Vector3d c = closest_point(q, positions_, triangles_[t]);
-    const double d = (c - q).squaredNorm();
-    if (d < hit.squared || (d == hit.squared && t < hit.triangle)) hit = Hit{t, c, d};
+NearestTriangle::Hit NearestTriangle::exact(const Eigen::Vector3d& q, int32_t near_triangle) const {
+  Hit hit;
+  if (near_triangle >= 0 && static_cast<size_t>(near_triangle) < triangles_.size() && !cover_.empty()) {
+    const Eigen::Vector3d c = closest_point(q, positions_, triangles_[near_triangle]);
+    hit = Hit{near_triangle, c, (c - q).squaredNorm()};
+  } else {
+    hit = (*this)(q);
   }
+  if (hit.triangle < 0 || cover_.empty()) return hit;
+  // The covering points within the distance to the nearest triangle found
+  // so far plus reach_, that bound shrinking as nearer triangles turn up. A
+  // triangle whose covering point lies farther than that cannot be nearer.
+  // The nearest, with ties to the lower triangle, whatever the tree's order.
+  struct Shrinking {
+    const NearestTriangle& self;
+    const Eigen::Vector3d& q;
+    Hit& hit;
+    double bound2;
+    // The last triangles tried: a large one has many covering points.
+    std::array<int32_t, 8> seen{-1, -1, -1, -1, -1, -1, -1, -1};
+    size_t next = 0;
+    size_t size() const { return 0; }
+    bool full() const { return true; }
+    double worstDist() const { return bound2; }
+    bool addPoint(double d2, uint32_t k) {
+      const int32_t t = self.cover_triangle_[k];
+      if (std::sqrt(d2) - self.reach_ >= std::sqrt(hit.squared)) return true;
+      if (std::find(seen.begin(), seen.end(), t) != seen.end()) return true;
+      seen[next++ % seen.size()] = t;
+      const Eigen::Vector3d c = closest_point(q, self.positions_, self.triangles_[t]);
+      const double d = (c - q).squaredNorm();
+      if (d < hit.squared || (d == hit.squared && t < hit.triangle)) {
+        hit = Hit{t, c, d};
+        const double b = std::sqrt(d) + self.reach_;
+        bound2 = b * b;
+      }
+      return true;
+    }
+  };
+  const double bound = std::sqrt(hit.squared) + reach_;
+  Shrinking within{*this, q, hit, bound * bound};
+  cover_tree_.findNeighbors(within, q.data(), nanoflann::SearchParams());
   return hit;
 }
 
