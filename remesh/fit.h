@@ -14,7 +14,8 @@
 // two ways; the input's samples alone leave out the parts of the remesh that
 // no sample is nearest to. With the remesh's points weighted twice, the fit
 // gained 0.3 to 0.8 dB more at 4 levels than with the input's samples alone
-// (twentieth session, docs/remesh_quality.md).
+// on every corpus mesh but beast_tri, which lost 0.13 dB (twentieth session,
+// docs/remesh_quality.md).
 #pragma once
 
 #include <Eigen/Core>
