@@ -262,15 +262,14 @@ TEST(Remesher, FitMeasuresBothWays) {
   const TriangleMesh bumpy = bumpy_sphere();
   auto plain = remesh(bumpy, small_options(3, 40, true));
   ASSERT_TRUE(plain.ok()) << plain.status().message();
-  std::vector<std::vector<std::array<int32_t, 3>>> levels;
-  for (int32_t l = 0; l <= 3; ++l) levels.push_back(plain->hierarchy.level_triangles(l));
-  std::vector<char> fixed(plain->positions.size(), 0);
-  std::fill(fixed.begin(), fixed.begin() + static_cast<std::ptrdiff_t>(plain->base.positions.size()), 1);
+  // What the remesher gives the fit: every level's triangles, base vertices fixed.
+  const LevelsToMove moving =
+      levels_to_move(plain->hierarchy, plain->levels, plain->base.positions.size(), plain->positions.size());
   auto fitted = [&](double remesh_weight) {
     FitOptions o;
     o.remesh_weight = remesh_weight;
     SemiRegularMesh out = plain.value();
-    fit_to_surface(bumpy, bumpy, levels, fixed, &out.positions, o);
+    fit_to_surface(bumpy, bumpy, moving.triangles, moving.fixed, &out.positions, o);
     return psnr_against(bumpy, out.level_mesh(3));
   };
   const double before = psnr_against(bumpy, plain->level_mesh(3)), one_way = fitted(0.0), both_ways = fitted(2.0);
