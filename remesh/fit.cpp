@@ -116,7 +116,8 @@ FoldCount count_by_sides(const std::vector<Eigen::Vector3d>& positions, const st
 
 FitReport fit_to_surface(const TriangleMesh& input, const TriangleMesh& sides,
                          const std::vector<std::vector<std::array<int32_t, 3>>>& levels, const std::vector<char>& fixed,
-                         std::vector<Eigen::Vector3d>* positions, const FitOptions& options) {
+                         std::vector<Eigen::Vector3d>* positions, const FitOptions& options,
+                         const NearestTriangle* input_search) {
   const auto start = std::chrono::steady_clock::now();
   FitReport report;
   if (levels.empty() || levels.back().empty() || sides.positions.empty()) return report;
@@ -145,10 +146,14 @@ FitReport fit_to_surface(const TriangleMesh& input, const TriangleMesh& sides,
   // than the triangles with the nearest centroids), weighted by a quarter of
   // the triangle's area times the input samples' density.
   const bool both_ways = options.remesh_weight > 0.0;
-  std::unique_ptr<NearestTriangle> to_input;
+  std::unique_ptr<NearestTriangle> own_search;
+  const NearestTriangle* to_input = input_search;
   double density = 0.0;
   if (both_ways) {
-    to_input = std::make_unique<NearestTriangle>(input.positions, input.triangles, /*exact_search=*/true);
+    if (!to_input) {
+      own_search = std::make_unique<NearestTriangle>(input.positions, input.triangles, /*exact_search=*/true);
+      to_input = own_search.get();
+    }
     double area = 0.0;
     for (const auto& t : input.triangles) area += triangle_area(input.positions, t);
     density = area > 0.0 ? static_cast<double>(samples.size()) / area : 0.0;

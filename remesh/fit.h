@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "format/mesh.h"
+#include "remesh/nearest_triangle.h"
 #include "remesh/point_cloud.h"
 
 namespace srcodec {
@@ -65,10 +66,13 @@ struct FitReport {
 // would turn a triangle of any level in `levels` by 60 degrees or more, or
 // make it face against the input: judged, as the fold recount does, by the
 // normals of the vertices of `sides` (the oversampled input the remesher ran
-// on) nearest its corners.
+// on) nearest its corners. `input_search`, when given, is an exact search
+// (NearestTriangle with exact_search) over `input` for the remesh's points;
+// without it the fit builds one.
 FitReport fit_to_surface(const TriangleMesh& input, const TriangleMesh& sides,
                          const std::vector<std::vector<std::array<int32_t, 3>>>& levels, const std::vector<char>& fixed,
-                         std::vector<Eigen::Vector3d>* positions, const FitOptions& options = {});
+                         std::vector<Eigen::Vector3d>* positions, const FitOptions& options = {},
+                         const NearestTriangle* input_search = nullptr);
 
 // The finest level's triangles facing against the input and its pleats,
 // counted as fit_to_surface counts them (FitReport::folded_by_nearest_input

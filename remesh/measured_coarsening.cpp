@@ -315,7 +315,7 @@ StatusOr<SemiRegularMesh> coarsen_by_measured_error(const TriangleMesh& input, c
     r.refit = static_cast<size_t>(std::count(fixed.begin(), fixed.end(), 0));
     if (r.refit == 0) return r;
     if (loss_before_refit) *loss_before_refit = loss_of(r.mesh.positions, finest, unsplit);
-    fit_to_surface(input, sides, moving.triangles, fixed, &r.mesh.positions, options.fit);
+    fit_to_surface(input, sides, moving.triangles, fixed, &r.mesh.positions, options.fit, &near_input);
     r.loss_db = loss_of(r.mesh.positions, finest, unsplit);
     return r;
   };
