@@ -59,6 +59,71 @@ std::vector<double> squared_to_input(const std::vector<Eigen::Vector3d>& x,
   return out;
 }
 
+// Each triangle's part of the mean square both ways, as the metric weighs
+// them: the input's samples nearest it (per sample) and its own distance
+// to the input (per unit area of the mesh).
+std::vector<double> error_share(const std::vector<Eigen::Vector3d>& x,
+                                const std::vector<std::array<int32_t, 3>>& triangles,
+                                const std::vector<Eigen::Vector3d>& samples, const NearestTriangle& near_input) {
+  std::vector<double> out = squared_to_input(x, triangles, std::vector<char>(triangles.size(), 0), near_input);
+  double area = 0.0;
+  for (const auto& t : triangles) area += triangle_area(x, t);
+  for (double& e : out) e = area > 0.0 ? e / area : 0.0;
+  const NearestTriangle near(x, triangles);
+  std::vector<NearestTriangle::Hit> hits(samples.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, samples.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i != r.end(); ++i) hits[i] = near(samples[i]);
+  });
+  const double per_sample = 1.0 / static_cast<double>(std::max<size_t>(samples.size(), 1));
+  for (const NearestTriangle::Hit& hit : hits)  // in order: the sums do not depend on the threads
+    if (hit.triangle >= 0) out[hit.triangle] += hit.squared * per_sample;
+  return out;
+}
+
+// The mesh with its finest level's triangles that hold the most error
+// (`fraction` of them) split once more, with the balance and closure splits
+// they bring. The new vertices start at their parent edge's midpoint and
+// are fitted (the others stay where they are); without `fit`, they go to
+// the input point nearest it instead. `split`: how many were chosen.
+SemiRegularMesh deepened(const TriangleMesh& input, const TriangleMesh& sides, const SemiRegularMesh& mesh,
+                         const NearestTriangle& near_input, const std::vector<Eigen::Vector3d>& samples,
+                         double fraction, const FitOptions* fit, size_t* split) {
+  *split = 0;
+  const int32_t top = mesh.levels;
+  std::vector<int32_t> node_of;
+  const std::vector<std::array<int32_t, 3>> fine = mesh.hierarchy.level_triangles(top, &node_of);
+  const std::vector<double> share = error_share(mesh.positions, fine, samples, near_input);
+  std::vector<int32_t> order(fine.size());
+  std::iota(order.begin(), order.end(), 0);
+  const size_t count = std::min(fine.size(), static_cast<size_t>(fraction * static_cast<double>(fine.size())));
+  std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(count), order.end(),
+                    [&](int32_t a, int32_t b) { return share[a] > share[b] || (share[a] == share[b] && a < b); });
+  SemiRegularMesh out = mesh;
+  const auto& nodes = out.hierarchy.nodes();
+  const int32_t old_vertices = out.hierarchy.vertex_count();
+  for (size_t k = 0; k < count; ++k) {
+    const int32_t n = node_of[order[k]];
+    if (nodes[n].level != top || nodes[n].first_child >= 0) continue;  // a green half's node, or split already
+    out.hierarchy.split(n);
+    ++*split;
+  }
+  if (*split == 0) return mesh;
+  out.levels = out.hierarchy.max_level();
+  out.positions.resize(static_cast<size_t>(out.hierarchy.vertex_count()));
+  for (int32_t v = old_vertices; v < out.hierarchy.vertex_count(); ++v) {  // parents come first
+    const auto [a, b] = out.hierarchy.parent_edge(v);
+    const Eigen::Vector3d mid = 0.5 * (out.positions[a] + out.positions[b]);
+    out.positions[v] = fit ? mid : near_input.exact(mid).point;
+  }
+  if (!fit) return out;
+  const LevelsToMove moving =
+      levels_to_move(out.hierarchy, out.levels, out.base.positions.size(), out.positions.size());
+  std::vector<char> fixed = moving.fixed;
+  std::fill(fixed.begin(), fixed.begin() + old_vertices, 1);
+  fit_to_surface(input, sides, moving.triangles, fixed, &out.positions, *fit, &near_input);
+  return out;
+}
+
 }  // namespace
 
 StatusOr<SemiRegularMesh> coarsen_by_measured_error(const TriangleMesh& input, const TriangleMesh& sides,
@@ -70,9 +135,6 @@ StatusOr<SemiRegularMesh> coarsen_by_measured_error(const TriangleMesh& input, c
                             " dB; use more than 0 and at most 60");
   CoarseningReport rep;
   SemiRegularMesh out = mesh;
-  const int32_t top = mesh.levels;
-  const TriangleHierarchy& h = mesh.hierarchy;
-  const std::vector<Eigen::Vector3d>& x = mesh.positions;
   const FoldCounter folds(sides);  // for the rounds that put splits back, and the result's count
   auto finish = [&]() -> StatusOr<SemiRegularMesh> {
     const std::vector<std::array<int32_t, 3>> finest = out.hierarchy.level_triangles(out.levels);
@@ -82,49 +144,12 @@ StatusOr<SemiRegularMesh> coarsen_by_measured_error(const TriangleMesh& input, c
     if (report) *report = rep;
     return out;
   };
-  if (top < 1 || input.triangles.empty() || h.max_level() != top) {
-    rep.triangles_before = h.level_triangles(top).size();
-    return finish();
-  }
-  const auto& nodes = h.nodes();
-  std::vector<int32_t> coarse_node, fine_node;
-  const std::vector<std::array<int32_t, 3>> coarse = h.level_triangles(top - 1, &coarse_node);
-  const std::vector<std::array<int32_t, 3>> fine = h.level_triangles(top, &fine_node);
-  rep.triangles_before = fine.size();
-
-  // The candidates: split nodes of level top - 1, whose children are leaves,
-  // that are one whole triangle of the coarser mesh (not bisected there).
-  std::vector<int32_t> pieces(nodes.size(), 0);
-  for (int32_t n : coarse_node) ++pieces[n];
-  std::vector<int32_t> candidate_of(nodes.size(), -1), candidates;
-  for (size_t n = 0; n < nodes.size(); ++n) {
-    const TriangleHierarchy::Node& node = nodes[n];
-    if (node.level != top - 1 || node.first_child < 0 || pieces[n] != 1) continue;
-    bool leaves = true;
-    for (int c = 0; c < 4; ++c) leaves &= nodes[node.first_child + c].first_child < 0;
-    if (!leaves) continue;
-    candidate_of[n] = static_cast<int32_t>(candidates.size());
-    candidates.push_back(static_cast<int32_t>(n));
-  }
-  const size_t m = candidates.size();
-  rep.candidates = m;
-  if (m == 0) return finish();
-  std::vector<int32_t> coarse_candidate(coarse.size()), fine_candidate(fine.size());
-  for (size_t t = 0; t < coarse.size(); ++t) coarse_candidate[t] = candidate_of[coarse_node[t]];
-  for (size_t t = 0; t < fine.size(); ++t) {
-    const TriangleHierarchy::Node& node = nodes[fine_node[t]];
-    fine_candidate[t] = node.level == top ? candidate_of[node.parent] : -1;
-  }
-
-  // Samples of the input to the coarser and the finer mesh: each sample's
-  // squared distances go to the candidate under its nearest coarser
-  // triangle (elsewhere both meshes are the same there).
-  std::vector<double> in_coarse(m, 0.0), in_fine(m, 0.0), remesh_coarse(m, 0.0), remesh_fine(m, 0.0);
-  double in_rest = 0.0, remesh_rest = 0.0;
+  rep.triangles_before = mesh.hierarchy.level_triangles(mesh.levels).size();
+  if (mesh.levels < 1 || input.triangles.empty() || mesh.hierarchy.max_level() != mesh.levels) return finish();
+  const NearestTriangle near_input(input.positions, input.triangles, /*exact_search=*/true);
   const std::vector<Eigen::Vector3d> samples =
-      surface_samples(input, options.input_samples_per_vertex * x.size(), options.seed);
-  // Fresh samples of the input, for the refit's whole measure (below), and
-  // their mean square distance to the full refinement.
+      surface_samples(input, options.input_samples_per_vertex * mesh.positions.size(), options.seed);
+  // Fresh samples of the input, for the refit's whole measure (below).
   std::vector<Eigen::Vector3d> fresh;
   if (options.refit) fresh = surface_samples(input, samples.size(), options.seed + 1);
   auto mean_square_to = [&](const NearestTriangle& near) {
@@ -134,6 +159,85 @@ StatusOr<SemiRegularMesh> coarsen_by_measured_error(const TriangleMesh& input, c
     });
     return std::accumulate(d.begin(), d.end(), 0.0) / static_cast<double>(std::max<size_t>(fresh.size(), 1));
   };
+  // Deeper where it pays: the loss is then judged against `mesh`, measured
+  // whole here (as `full` and `fresh_full` below measure the full refinement).
+  SemiRegularMesh deep;
+  double fresh_reference = 0.0;
+  if (options.deepen_fraction > 0.0) {
+    deep = deepened(input, sides, mesh, near_input, samples, options.deepen_fraction,
+                    options.refit ? &options.fit : nullptr, &rep.deepened);
+    if (rep.deepened > 0 && options.refit) {
+      const std::vector<std::array<int32_t, 3>> before = mesh.hierarchy.level_triangles(mesh.levels);
+      const std::vector<double> sq =
+          squared_to_input(mesh.positions, before, std::vector<char>(before.size(), 0), near_input);
+      double area = 0.0;
+      for (const auto& t : before) area += triangle_area(mesh.positions, t);
+      fresh_reference = std::max(mean_square_to(NearestTriangle(mesh.positions, before)),
+                                 std::accumulate(sq.begin(), sq.end(), 0.0) / area);
+    }
+  }
+  const bool deeper = rep.deepened > 0;
+  const SemiRegularMesh& src = deeper ? deep : mesh;
+  if (deeper) out = src;
+  const int32_t top = src.levels;
+  const TriangleHierarchy& h = src.hierarchy;
+  const std::vector<Eigen::Vector3d>& x = src.positions;
+  const auto& nodes = h.nodes();
+  std::vector<int32_t> coarse_node, fine_node;
+  std::vector<std::array<int32_t, 3>> coarse = h.level_triangles(top - 1, &coarse_node);
+  const std::vector<std::array<int32_t, 3>> fine = h.level_triangles(top, &fine_node);
+
+  // The candidates: split nodes of level top - 1, whose children are leaves,
+  // that are one whole triangle of the coarser mesh (not bisected there);
+  // after deepening also those of level top - 2 whose children are leaves.
+  std::vector<int32_t> pieces(nodes.size(), 0);
+  for (int32_t n : coarse_node) ++pieces[n];
+  std::vector<int32_t> candidate_of(nodes.size(), -1), candidates;
+  for (size_t n = 0; n < nodes.size(); ++n) {
+    const TriangleHierarchy::Node& node = nodes[n];
+    const bool whole = node.level == top - 1 && pieces[n] == 1;
+    if (node.first_child < 0 || !(whole || (deeper && node.level == top - 2))) continue;
+    bool leaves = true;
+    for (int c = 0; c < 4; ++c) leaves &= nodes[node.first_child + c].first_child < 0;
+    if (!leaves) continue;
+    candidate_of[n] = static_cast<int32_t>(candidates.size());
+    candidates.push_back(static_cast<int32_t>(n));
+  }
+  const size_t m = candidates.size();
+  rep.candidates = m;
+  if (m == 0) return finish();
+  if (deeper) {  // the coarser mesh has the candidates of level top - 2 whole
+    std::vector<std::array<int32_t, 3>> merged;
+    std::vector<int32_t> merged_node;
+    std::vector<char> placed(nodes.size(), 0);
+    for (size_t t = 0; t < coarse.size(); ++t) {
+      const int32_t p = nodes[coarse_node[t]].parent;
+      if (p >= 0 && candidate_of[p] >= 0) {
+        if (!placed[p]) {
+          placed[p] = 1;
+          merged.push_back(nodes[p].v);
+          merged_node.push_back(p);
+        }
+        continue;
+      }
+      merged.push_back(coarse[t]);
+      merged_node.push_back(coarse_node[t]);
+    }
+    coarse.swap(merged);
+    coarse_node.swap(merged_node);
+  }
+  std::vector<int32_t> coarse_candidate(coarse.size()), fine_candidate(fine.size());
+  for (size_t t = 0; t < coarse.size(); ++t) coarse_candidate[t] = candidate_of[coarse_node[t]];
+  for (size_t t = 0; t < fine.size(); ++t) {
+    const int32_t p = nodes[fine_node[t]].parent;
+    fine_candidate[t] = p >= 0 ? candidate_of[p] : -1;
+  }
+
+  // Samples of the input to the coarser and the finer mesh: each sample's
+  // squared distances go to the candidate under its nearest coarser
+  // triangle (elsewhere both meshes are the same there).
+  std::vector<double> in_coarse(m, 0.0), in_fine(m, 0.0), remesh_coarse(m, 0.0), remesh_fine(m, 0.0);
+  double in_rest = 0.0, remesh_rest = 0.0;
   double fresh_in_full = 0.0;
   {
     const NearestTriangle near_coarse(x, coarse), near_fine(x, fine);
@@ -159,7 +263,6 @@ StatusOr<SemiRegularMesh> coarsen_by_measured_error(const TriangleMesh& input, c
   }
   // Samples of the remesh to the input: over each candidate's triangle and
   // over its four children, weighted by area.
-  const NearestTriangle near_input(input.positions, input.triangles, /*exact_search=*/true);
   std::vector<char> skip(coarse.size());
   for (size_t t = 0; t < coarse.size(); ++t) skip[t] = coarse_candidate[t] < 0;
   const std::vector<double> coarse_sq = squared_to_input(x, coarse, skip, near_input);
@@ -184,11 +287,25 @@ StatusOr<SemiRegularMesh> coarsen_by_measured_error(const TriangleMesh& input, c
     }
     return std::max(in * per_sample, rm * per_area);
   };
-  const double full = mean_square(std::vector<char>(m, 1));
+  // The full refinement's: after deepening, without the deeper splits.
+  std::vector<char> reference(m, 1);
+  if (deeper)
+    for (size_t c = 0; c < m; ++c) reference[c] = nodes[candidates[c]].level != top - 1;
+  const double full = mean_square(reference);
   if (!(full > 0.0)) return finish();
   std::vector<double> gain(m);
   for (size_t c = 0; c < m; ++c)
     gain[c] = (in_coarse[c] - in_fine[c]) * per_sample + (remesh_coarse[c] - remesh_fine[c]) * per_area;
+  // After deepening, the deeper splits whose children fold or pleat (judged
+  // as the fit judges them) count as gaining nothing.
+  if (deeper) {
+    std::vector<char> marked;
+    folds(x, fine, &marked);
+    for (size_t t = 0; t < fine.size(); ++t) {
+      const int32_t c = fine_candidate[t];
+      if (marked[t] && c >= 0 && nodes[candidates[c]].level == top - 1) gain[c] = std::min(gain[c], 0.0);
+    }
+  }
   std::vector<int32_t> order(m);
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](int32_t a, int32_t b) { return gain[a] > gain[b]; });
@@ -196,6 +313,9 @@ StatusOr<SemiRegularMesh> coarsen_by_measured_error(const TriangleMesh& input, c
   // The first k in that order kept split (and those `forced`), with the
   // splits their balance and closure need: the hierarchy, its nodes' and
   // vertices' old ids, and the loss.
+  // Per candidate: kForced, kept split whatever its place in the order (the
+  // rounds below), or kBarred, never kept (a deeper split whose children fold).
+  constexpr char kForced = 1, kBarred = 2;
   std::vector<char> forced(m, 0);
   struct Choice {
     TriangleHierarchy hierarchy;
@@ -206,8 +326,8 @@ StatusOr<SemiRegularMesh> coarsen_by_measured_error(const TriangleMesh& input, c
   };
   auto choose = [&](size_t k) -> StatusOr<Choice> {
     std::vector<char> keep(nodes.size(), 1);
-    for (size_t j = k; j < m; ++j)
-      if (!forced[order[j]]) keep[candidates[order[j]]] = 0;
+    for (size_t j = 0; j < m; ++j)
+      if (j < k ? forced[order[j]] == kBarred : forced[order[j]] != kForced) keep[candidates[order[j]]] = 0;
     Choice c;
     SRCODEC_ASSIGN_OR_RETURN(c.hierarchy, h.replayed(keep, &c.old_vertex, &c.old_node));
     std::vector<char> split(m, 0);
@@ -221,8 +341,13 @@ StatusOr<SemiRegularMesh> coarsen_by_measured_error(const TriangleMesh& input, c
   };
   // The fewest splits in that order whose loss is within the limit (all of
   // them are).
+  // After deepening, the splits that gain nothing (a deeper split can lose,
+  // where it lies across a cleft) are never kept for the budget, even when
+  // it cannot be met without them.
+  const size_t useful =
+      deeper ? static_cast<size_t>(std::count_if(gain.begin(), gain.end(), [](double g) { return g > 0.0; })) : m;
   auto fewest = [&](double budget_db) -> StatusOr<Choice> {
-    size_t lo = 0, hi = m;
+    size_t lo = 0, hi = useful;
     while (lo < hi) {
       const size_t mid = lo + (hi - lo) / 2;
       SRCODEC_ASSIGN_OR_RETURN(Choice c, choose(mid));
@@ -236,7 +361,8 @@ StatusOr<SemiRegularMesh> coarsen_by_measured_error(const TriangleMesh& input, c
   // by the closure, under a marked triangle of the finest level (the fit kept
   // the full refinement's levels from folding, not a mix of them). Then the
   // fewest splits again: those put back may gain nothing (their children
-  // fold or pleat instead).
+  // fold or pleat instead). After deepening, a deeper split kept whose
+  // children fold or pleat is barred instead.
   auto coarsened = [&](double budget_db) -> StatusOr<Choice> {
     std::fill(forced.begin(), forced.end(), 0);
     size_t kept = 0;
@@ -251,9 +377,17 @@ StatusOr<SemiRegularMesh> coarsen_by_measured_error(const TriangleMesh& input, c
       size_t more = 0;
       for (size_t t = 0; t < finest.size(); ++t) {
         if (!marked[t]) continue;
-        const int32_t c = candidate_of[best.old_node[node_of[t]]];
+        const int32_t was = best.old_node[node_of[t]];
+        const int32_t c = candidate_of[was];
         if (c >= 0 && !forced[c]) {
-          forced[c] = 1;
+          forced[c] = kForced;
+          ++more;
+        }
+        // After deepening: a deeper split kept whose child folds or pleats.
+        const int32_t p = nodes[was].parent;
+        const int32_t d = deeper && c < 0 && p >= 0 && nodes[p].level == top - 1 ? candidate_of[p] : -1;
+        if (d >= 0 && !forced[d]) {
+          forced[d] = kBarred;
           ++more;
         }
       }
@@ -276,7 +410,8 @@ StatusOr<SemiRegularMesh> coarsen_by_measured_error(const TriangleMesh& input, c
   // The full refinement's mean square by the fresh samples.
   double remesh_full = remesh_rest;
   for (size_t c = 0; c < m; ++c) remesh_full += remesh_fine[c];
-  const double fresh_full = options.refit ? std::max(fresh_in_full, remesh_full * per_area) : full;
+  const double fresh_full =
+      !options.refit ? full : deeper ? fresh_reference : std::max(fresh_in_full, remesh_full * per_area);
   // A mesh's loss: mean squares both ways, as `full`'s, but by fresh samples of
   // the input (those that chose the splits to undo favour their own
   // choice; on the smooth scans the remesh's side decides, and nothing
@@ -303,11 +438,22 @@ StatusOr<SemiRegularMesh> coarsen_by_measured_error(const TriangleMesh& input, c
     const LevelsToMove moving =
         levels_to_move(r.mesh.hierarchy, r.mesh.levels, r.mesh.base.positions.size(), r.mesh.positions.size());
     const auto& finest = moving.triangles.back();
-    // The finest level's triangles left unsplit (their corners are coarser).
+    // The finest level's triangles left unsplit: candidates now whole
+    // (their corners are coarser than the children around them; after
+    // deepening, those of the deeper splits undone were fitted to the levels
+    // asked, and fitting them again to the mesh around them gains: igea at 5
+    // levels, 60.5% -> 59.7% of the triangles at the same loss).
+    std::vector<int32_t> node_of;
+    r.mesh.hierarchy.level_triangles(r.mesh.levels, &node_of);
+    const auto& now = r.mesh.hierarchy.nodes();
     std::vector<char> unsplit(finest.size());
-    for (size_t t = 0; t < finest.size(); ++t)
-      unsplit[t] = std::all_of(finest[t].begin(), finest[t].end(),
-                               [&](int32_t v) { return r.mesh.hierarchy.vertex_level(v) < top; });
+    for (size_t t = 0; t < finest.size(); ++t) {
+      const int32_t n = node_of[t];
+      const int32_t was = r.choice.old_node[n];
+      unsplit[t] = candidate_of[was] >= 0 &&
+                   std::all_of(finest[t].begin(), finest[t].end(),
+                               [&](int32_t v) { return r.mesh.hierarchy.vertex_level(v) <= now[n].level; });
+    }
     std::vector<char> fixed(r.mesh.positions.size(), 1);
     for (size_t t = 0; t < finest.size(); ++t)
       if (unsplit[t])

@@ -43,10 +43,20 @@ struct CoarseningOptions {
   // times the whole measure's loss (the bunny; 0.99 to 1.15 on armadillo,
   // nefertiti and igea), so that 0.5 dB asked came out as 0.58.
   double whole_margin = 0.7;
+  // Deeper where it pays (ours): first, the finest level's triangles that
+  // hold the most error (this fraction of them, by their share of the
+  // estimated mean square both ways) are split once more, their new
+  // vertices put on the input at their parent edges' midpoints and fitted.
+  // The loss is then judged against the mesh before (the full refinement of
+  // the levels asked), and the splits of both last levels may be undone.
+  // 0 turns it off.
+  double deepen_fraction = 0.0;
 };
 
 struct CoarseningReport {
-  size_t candidates = 0;        // split triangles of the level below the finest
+  size_t candidates = 0;        // split triangles whose children are leaves (of the level below the finest, and
+                                // with deepen_fraction of the one below it)
+  size_t deepened = 0;          // triangles of the finest level asked split once more (deepen_fraction)
   size_t undone = 0;            // of those, the splits undone
   size_t triangles_before = 0;  // the finest level's
   size_t triangles_after = 0;

@@ -149,6 +149,15 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
   if (options.max_loss_db > 0.0 && (!options.uniform || options.tolerance_db > 0.0))
     return invalid_argument("remesh: the measured coarsening (max loss) undoes splits of the uniform refinement; ask "
                             "for uniform refinement without a tolerance or threshold");
+  if (!(options.deepen_fraction >= 0.0 && options.deepen_fraction <= 1.0))
+    return invalid_argument("remesh: deepen fraction " + std::to_string(options.deepen_fraction) +
+                            "; use 0 (off) up to 1");
+  if (options.deepen_fraction > 0.0 && options.levels >= 12)
+    return invalid_argument("remesh: deepening adds a level to the " + std::to_string(options.levels) +
+                            " asked, past the 12 that .srm files hold; ask for at most 11");
+  if (options.deepen_fraction > 0.0 && !(options.max_loss_db > 0.0))
+    return invalid_argument("remesh: deepening (split the worst triangles once more) is part of the measured "
+                            "coarsening; ask for a max loss too");
   if (options.oversample < -1 || options.oversample > 3)
     return invalid_argument("remesh: oversample " + std::to_string(options.oversample) + "; use auto or 0 to 3");
   if (mesh.triangles.empty()) return invalid_mesh("remesh: the mesh has no triangles");
@@ -357,17 +366,25 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
     CoarseningOptions coarsening;
     coarsening.max_loss_db = options.max_loss_db;
     coarsening.refit = options.fit_surface;  // --no-fit-surface keeps the sites where they are
+    coarsening.deepen_fraction = options.deepen_fraction;
     SRCODEC_ASSIGN_OR_RETURN(out, coarsen_by_measured_error(mesh, input, out, coarsening, &rep.coarsening));
     // The level reports: the last one's splits are those kept (fewer
     // levels when none is).
     rep.levels.resize(static_cast<size_t>(out.levels));
+    for (size_t l = 0; l < rep.levels.size(); ++l) rep.levels[l].level = static_cast<int>(l) + 1;
+    if (out.levels > levels) rep.levels.back().selected = rep.coarsening.deepened;
     if (out.levels == levels) {
       RefineLevelReport& last = rep.levels.back();
       last.within_tolerance = rep.coarsening.undone;
       last.split = rep.coarsening.candidates - rep.coarsening.undone;
     }
-    progress("measured coarsening: " + std::to_string(rep.coarsening.undone) + " of " +
-             std::to_string(rep.coarsening.candidates) + " splits of level " + std::to_string(levels - 1) +
+    const std::string deepened =
+        rep.coarsening.deepened > 0 ? std::to_string(rep.coarsening.deepened) + " triangles of level " +
+                                          std::to_string(levels) + " split once more; " : "";
+    progress("measured coarsening: " + deepened + std::to_string(rep.coarsening.undone) + " of " +
+             std::to_string(rep.coarsening.candidates) + " splits of level " +
+             (rep.coarsening.deepened > 0 ? std::to_string(levels - 1) + " and " + std::to_string(levels)
+                                          : std::to_string(levels - 1)) +
              " undone, " + std::to_string(rep.coarsening.triangles_before) + " -> " +
              std::to_string(rep.coarsening.triangles_after) + " triangles, estimated loss " +
              std::to_string(rep.coarsening.estimated_loss_db) + " dB (" + std::to_string(rep.coarsening.kept_for_folds) +

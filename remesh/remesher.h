@@ -44,6 +44,12 @@ struct RemeshOptions {
   // left unsplit are then fitted again, and more splits undone while the
   // result stays within it. Needs `uniform`, no tolerance; 0 turns it off.
   double max_loss_db = 0.0;
+  // With max_loss_db (CoarseningOptions::deepen_fraction, ours): first split
+  // once more this fraction of the finest level's triangles, those holding
+  // the most error, and judge the loss against the levels asked; the
+  // splits of both last levels may then be undone, so the result can have
+  // one level more than `levels` where that pays. 0 turns it off.
+  double deepen_fraction = 0.0;
   int oversample = -1;     // Butterfly/Loop steps 0..3; -1 = auto, per component (remesher.cpp)
   OversampleScheme scheme = OversampleScheme::kButterfly;
   int max_lloyd_iterations = 10;  // per refinement level

@@ -542,6 +542,56 @@ TEST(Remesher, MaxLossKeepsTheSplitsThatGain) {
   EXPECT_LT(psnr_against(square, fine_u) - psnr_against(square, m->level_mesh(3)), 0.6);
 }
 
+// Deepening (RemeshOptions::deepen_fraction) on a square with one narrow
+// bump, which the levels asked do not resolve: the finest triangles there
+// are split once more, the rest coarsened, and the result is closer to the
+// input than the uniform refinement of the levels asked, with fewer
+// triangles than the measured coarsening alone keeps at the same loss.
+TEST(Remesher, DeepenSplitsOnceMoreWhereTheErrorIs) {
+  TriangleMesh square = test::flat_square(120);
+  const Eigen::Vector2d bump(0.7, 0.45);
+  for (Eigen::Vector3d& p : square.positions)
+    p.z() = 0.1 * std::exp(-(p.head<2>() - bump).squaredNorm() / (2 * 0.012 * 0.012)) +
+            0.02 * std::sin(12.0 * p.x()) * std::sin(12.0 * p.y());
+  RemeshOptions uniform = small_options(3, 30, true);
+  uniform.fit_surface = true;
+  RemeshOptions coarsened = uniform;
+  coarsened.max_loss_db = 0.5;
+  RemeshOptions deeper = coarsened;
+  deeper.deepen_fraction = 0.03;
+  RemeshReport cr, dr;
+  auto u = remesh(square, uniform);
+  auto c = remesh(square, coarsened, &cr);
+  auto d = remesh(square, deeper, &dr);
+  auto again = remesh(square, deeper);
+  ASSERT_TRUE(u.ok() && c.ok()) << u.status().message();
+  ASSERT_TRUE(d.ok() && again.ok()) << d.status().message();
+  expect_semi_regular(d.value());
+  ASSERT_EQ(c->levels, 3);
+  ASSERT_EQ(d->levels, 4);
+  EXPECT_GT(dr.coarsening.deepened, 0u);
+  EXPECT_EQ(dr.coarsening.triangles_before, u->level_mesh(3).triangles.size());
+  const TriangleMesh fine_u = u->level_mesh(3), fine_c = c->level_mesh(3), fine_d = d->level_mesh(4);
+  EXPECT_EQ(fine_d.positions, again->level_mesh(4).positions);
+  EXPECT_EQ(fine_d.triangles, again->level_mesh(4).triangles);
+  // The fourth level's vertices are on the bump.
+  const TriangleHierarchy& h = d->hierarchy;
+  size_t deepest = 0, near_bump = 0;
+  for (int32_t v = 0; v < h.vertex_count(); ++v)
+    if (h.vertex_level(v) == 4) {
+      ++deepest;
+      near_bump += (d->positions[v].head<2>() - bump).norm() < 0.1;
+    }
+  EXPECT_GT(deepest, 0u);
+  EXPECT_GE(near_bump * 10, deepest * 9) << near_bump << " of " << deepest;
+  const double psnr_u = psnr_against(square, fine_u), psnr_c = psnr_against(square, fine_c),
+               psnr_d = psnr_against(square, fine_d);
+  EXPECT_GT(psnr_d, psnr_u - 0.6) << psnr_u;
+  EXPECT_GT(psnr_d, psnr_c - 0.2) << psnr_c;
+  EXPECT_LT(fine_d.triangles.size(), fine_c.triangles.size() * 8 / 10) << fine_c.triangles.size();
+  EXPECT_EQ(folded_by_nearest_input(square, fine_d), 0u);
+}
+
 // The measured coarsening undoes splits of the uniform refinement: it is
 // refused with a threshold or a tolerance, and outside (0, 60] dB.
 TEST(Remesher, MaxLossNeedsTheUniformRefinement) {
@@ -557,6 +607,13 @@ TEST(Remesher, MaxLossNeedsTheUniformRefinement) {
   o.max_loss_db = 61.0;
   EXPECT_EQ(remesh(square, o).status().code(), StatusCode::kInvalidArgument);
   o.max_loss_db = -1.0;
+  EXPECT_EQ(remesh(square, o).status().code(), StatusCode::kInvalidArgument);
+  // Deepening is part of it, and a fraction.
+  o.max_loss_db = 0.0;
+  o.deepen_fraction = 0.03;
+  EXPECT_EQ(remesh(square, o).status().code(), StatusCode::kInvalidArgument);
+  o.max_loss_db = 0.5;
+  o.deepen_fraction = 1.5;
   EXPECT_EQ(remesh(square, o).status().code(), StatusCode::kInvalidArgument);
 }
 

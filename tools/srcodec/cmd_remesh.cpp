@@ -124,7 +124,9 @@ Status run_remesh(const RemeshCliOptions& o) {
         .field("untangled_coarser_pleats", report.untangle.after.coarser_pleats)
         .field("max_loss_db", options.max_loss_db);
     if (options.max_loss_db > 0.0)
-      j.field("coarsening_candidates", report.coarsening.candidates)
+      j.field("deepen_fraction", options.deepen_fraction)
+          .field("coarsening_deepened", report.coarsening.deepened)
+          .field("coarsening_candidates", report.coarsening.candidates)
           .field("coarsening_undone", report.coarsening.undone)
           .field("coarsening_estimated_loss_db", report.coarsening.estimated_loss_db)
           .field("coarsening_kept_for_folds", report.coarsening.kept_for_folds)

@@ -25,7 +25,7 @@ void add_remesh_flags(CLI::App* cmd, RemeshFlags& f) {
                                     "input's RMS distance to it is within this PSNR in dB (bounding-box diagonal x "
                                     "10^(-dB/20)); with --uniform or --threshold");
   tolerance->check(kFiniteNumber)->check(CLI::Range(1.0, 300.0));
-  cmd->add_option("--max-loss", f.max_loss_db,
+  auto* max_loss = cmd->add_option("--max-loss", f.max_loss_db,
                   "Adaptive by measured error: refine uniformly and fit, then undo the last level's splits that "
                   "gain least (error measured both ways against the input) while the estimated PSNR stays within "
                   "this many dB of the full refinement's; the unsplit triangles' corners are fitted again, and "
@@ -34,6 +34,14 @@ void add_remesh_flags(CLI::App* cmd, RemeshFlags& f) {
       ->check(CLI::Range(0.01, 60.0))
       ->excludes(threshold)
       ->excludes(tolerance);
+  cmd->add_option("--deepen", f.deepen_fraction,
+                  "With --max-loss: first split once more this fraction of the finest level's triangles, those "
+                  "holding the most error, then judge the loss against the levels asked and undo the splits of "
+                  "both last levels that gain least: the output has one level more than --levels where that pays; "
+                  "e.g. 0.03")
+      ->check(kFiniteNumber)
+      ->check(CLI::Range(0.0, 1.0))
+      ->needs(max_loss);
   cmd->add_flag("!--no-fit-surface", f.fit_surface,
                 "Leave every vertex where the remeshing put it (on the input's vertices, as in the paper): by "
                 "default the vertices above the base mesh then move along their normals to centre the finest "
@@ -60,6 +68,7 @@ StatusOr<RemeshOptions> to_remesh_options(const RemeshFlags& o) {
   r.threshold = std::max(o.threshold, 0.0);
   r.tolerance_db = o.tolerance_db;
   r.max_loss_db = o.max_loss_db;
+  r.deepen_fraction = o.deepen_fraction;
   r.fit_surface = o.fit_surface;
   r.untangle = o.untangle;
   if (o.oversample == "auto") {

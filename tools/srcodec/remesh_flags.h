@@ -18,6 +18,7 @@ struct RemeshFlags {
   bool uniform = false;
   double tolerance_db = 0.0;
   double max_loss_db = 0.0;
+  double deepen_fraction = 0.0;
   bool fit_surface = true;
   bool untangle = true;
   // Set by add_remesh_flags: without --levels, `levels` is fitted to small
@@ -25,7 +26,7 @@ struct RemeshFlags {
   const CLI::Option* levels_option = nullptr;
 };
 
-// Adds --levels, --base-vertices, --threshold, --uniform, --tolerance, --max-loss, --no-fit-surface,
+// Adds --levels, --base-vertices, --threshold, --uniform, --tolerance, --max-loss, --deepen, --no-fit-surface,
 // --no-untangle, --oversample, --scheme.
 void add_remesh_flags(CLI::App* cmd, RemeshFlags& flags);
 StatusOr<RemeshOptions> to_remesh_options(const RemeshFlags& flags);
