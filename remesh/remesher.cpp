@@ -372,7 +372,20 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
     // levels when none is).
     rep.levels.resize(static_cast<size_t>(out.levels));
     for (size_t l = 0; l < rep.levels.size(); ++l) rep.levels[l].level = static_cast<int>(l) + 1;
-    if (out.levels > levels) rep.levels.back().selected = rep.coarsening.deepened;
+    if (out.levels > levels) {  // deepened: the triangles chosen, and of both last levels, those split in the end
+      auto split_at = [&](int32_t level) {
+        size_t n = 0;
+        for (const TriangleHierarchy::Node& node : out.hierarchy.nodes())
+          n += node.level == level && node.first_child >= 0;
+        return n;
+      };
+      RefineLevelReport& asked = rep.levels[static_cast<size_t>(levels) - 1];
+      const size_t kept = split_at(levels - 1);
+      asked.within_tolerance = asked.split > kept ? asked.split - kept : 0;
+      asked.split = kept;
+      rep.levels.back().selected = rep.coarsening.deepened;
+      rep.levels.back().split = split_at(levels);
+    }
     if (out.levels == levels) {
       RefineLevelReport& last = rep.levels.back();
       last.within_tolerance = rep.coarsening.undone;
