@@ -46,7 +46,8 @@ struct CoarseningOptions {
   // Deeper where it pays (ours): first, the finest level's triangles that
   // hold the most error (this fraction of them, by their share of the
   // estimated mean square both ways) are split once more, their new
-  // vertices put on the input at their parent edges' midpoints and fitted.
+  // vertices started at their parent edges' midpoints and fitted (without
+  // `refit`, put on the input point nearest the midpoint).
   // The loss is then judged against the mesh before (the full refinement of
   // the levels asked), and the splits of both last levels may be undone.
   // 0 turns it off.

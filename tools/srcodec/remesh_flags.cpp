@@ -38,7 +38,7 @@ void add_remesh_flags(CLI::App* cmd, RemeshFlags& f) {
                   "With --max-loss: first split once more this fraction of the finest level's triangles, those "
                   "holding the most error, then judge the loss against the levels asked and undo the splits of "
                   "both last levels that gain least: the output has one level more than --levels where that pays; "
-                  "e.g. 0.03")
+                  "e.g. 0.06")
       ->check(kFiniteNumber)
       ->check(CLI::Range(0.0, 1.0))
       ->needs(max_loss);
