@@ -60,16 +60,13 @@ std::vector<double> squared_to_input(const std::vector<Eigen::Vector3d>& x,
 }
 
 // Each triangle's part of the mean square both ways, as the metric weighs
-// them: the input's samples nearest it (per sample) and its own distance
-// to the input (per unit area of the mesh).
-std::vector<double> error_share(const std::vector<Eigen::Vector3d>& x,
-                                const std::vector<std::array<int32_t, 3>>& triangles,
-                                const std::vector<Eigen::Vector3d>& samples, const NearestTriangle& near_input) {
-  std::vector<double> out = squared_to_input(x, triangles, std::vector<char>(triangles.size(), 0), near_input);
-  double area = 0.0;
-  for (const auto& t : triangles) area += triangle_area(x, t);
-  for (double& e : out) e = area > 0.0 ? e / area : 0.0;
-  const NearestTriangle near(x, triangles);
+// them: its own distance to the input (`to_input`, squared_to_input's, per
+// unit of the mesh's `area`) and the input's samples nearest it (found by
+// `near`, a search over the same triangles; per sample).
+std::vector<double> error_share(const std::vector<double>& to_input, double area, const NearestTriangle& near,
+                                const std::vector<Eigen::Vector3d>& samples) {
+  std::vector<double> out(to_input.size());
+  for (size_t t = 0; t < out.size(); ++t) out[t] = area > 0.0 ? to_input[t] / area : 0.0;
   std::vector<NearestTriangle::Hit> hits(samples.size());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, samples.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t i = r.begin(); i != r.end(); ++i) hits[i] = near(samples[i]);
@@ -81,21 +78,20 @@ std::vector<double> error_share(const std::vector<Eigen::Vector3d>& x,
 }
 
 // The mesh with its finest level's triangles that hold the most error
-// (`fraction` of them) split once more, with the balance and closure splits
-// they bring. The new vertices start at their parent edge's midpoint and
-// are fitted (the others stay where they are); without `fit`, they go to
-// the input point nearest it instead. `split`: how many were chosen.
+// (`fraction` of them, by `share`, error_share's over the finest level's
+// triangles, which come from the nodes `node_of`) split once more, with the
+// balance and closure splits they bring. The new vertices start at their
+// parent edge's midpoint and are fitted (the others stay where they are);
+// without `fit`, they go to the input point nearest it instead. `split`:
+// how many were chosen.
 SemiRegularMesh deepened(const TriangleMesh& input, const TriangleMesh& sides, const SemiRegularMesh& mesh,
-                         const NearestTriangle& near_input, const std::vector<Eigen::Vector3d>& samples,
-                         double fraction, const FitOptions* fit, size_t* split) {
+                         const std::vector<int32_t>& node_of, const std::vector<double>& share,
+                         const NearestTriangle& near_input, double fraction, const FitOptions* fit, size_t* split) {
   *split = 0;
   const int32_t top = mesh.levels;
-  std::vector<int32_t> node_of;
-  const std::vector<std::array<int32_t, 3>> fine = mesh.hierarchy.level_triangles(top, &node_of);
-  const std::vector<double> share = error_share(mesh.positions, fine, samples, near_input);
-  std::vector<int32_t> order(fine.size());
+  std::vector<int32_t> order(share.size());
   std::iota(order.begin(), order.end(), 0);
-  const size_t count = std::min(fine.size(), static_cast<size_t>(fraction * static_cast<double>(fine.size())));
+  const size_t count = std::min(share.size(), static_cast<size_t>(fraction * static_cast<double>(share.size())));
   std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(count), order.end(),
                     [&](int32_t a, int32_t b) { return share[a] > share[b] || (share[a] == share[b] && a < b); });
   SemiRegularMesh out = mesh;
@@ -144,7 +140,9 @@ StatusOr<SemiRegularMesh> coarsen_by_measured_error(const TriangleMesh& input, c
     if (report) *report = rep;
     return out;
   };
-  rep.triangles_before = mesh.hierarchy.level_triangles(mesh.levels).size();
+  std::vector<int32_t> asked_node;  // the levels asked: their finest triangles, and the nodes they come from
+  const std::vector<std::array<int32_t, 3>> asked = mesh.hierarchy.level_triangles(mesh.levels, &asked_node);
+  rep.triangles_before = asked.size();
   if (mesh.levels < 1 || input.triangles.empty() || mesh.hierarchy.max_level() != mesh.levels) return finish();
   const NearestTriangle near_input(input.positions, input.triangles, /*exact_search=*/true);
   const std::vector<Eigen::Vector3d> samples =
@@ -164,17 +162,17 @@ StatusOr<SemiRegularMesh> coarsen_by_measured_error(const TriangleMesh& input, c
   SemiRegularMesh deep;
   double fresh_reference = 0.0;
   if (options.deepen_fraction > 0.0) {
-    deep = deepened(input, sides, mesh, near_input, samples, options.deepen_fraction,
-                    options.refit ? &options.fit : nullptr, &rep.deepened);
-    if (rep.deepened > 0 && options.refit) {
-      const std::vector<std::array<int32_t, 3>> before = mesh.hierarchy.level_triangles(mesh.levels);
-      const std::vector<double> sq =
-          squared_to_input(mesh.positions, before, std::vector<char>(before.size(), 0), near_input);
-      double area = 0.0;
-      for (const auto& t : before) area += triangle_area(mesh.positions, t);
-      fresh_reference = std::max(mean_square_to(NearestTriangle(mesh.positions, before)),
-                                 std::accumulate(sq.begin(), sq.end(), 0.0) / area);
-    }
+    // The levels asked measured once, for the choice of triangles and the whole.
+    const NearestTriangle near_asked(mesh.positions, asked);
+    const std::vector<double> to_input =
+        squared_to_input(mesh.positions, asked, std::vector<char>(asked.size(), 0), near_input);
+    double area = 0.0;
+    for (const auto& t : asked) area += triangle_area(mesh.positions, t);
+    deep = deepened(input, sides, mesh, asked_node, error_share(to_input, area, near_asked, samples), near_input,
+                    options.deepen_fraction, options.refit ? &options.fit : nullptr, &rep.deepened);
+    if (rep.deepened > 0 && options.refit)
+      fresh_reference =
+          std::max(mean_square_to(near_asked), std::accumulate(to_input.begin(), to_input.end(), 0.0) / area);
   }
   const bool deeper = rep.deepened > 0;
   const SemiRegularMesh& src = deeper ? deep : mesh;
