@@ -6,6 +6,7 @@
 #include <functional>
 
 #include "remesh/base_mesh.h"
+#include "remesh/boundary_tips.h"
 #include "remesh/components.h"
 #include "remesh/geometry.h"
 #include "remesh/lbg_sites.h"
@@ -277,6 +278,9 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
       LbgReport lbg_report;
       SRCODEC_ASSIGN_OR_RETURN(cells, lbg_sites(part, lbg, &lbg_report));
       for (const auto& round : lbg_report.rounds) rep.curled_sites += round.curled_splits;
+      BoundaryTipOptions tips;
+      tips.reach = boundary_tip_reach(part, share[c]);
+      rep.tip_sites += add_boundary_tip_sites(part, tips, &cells);
     }
     sites_s += seconds_since(t0);
     t0 = std::chrono::steady_clock::now();
@@ -300,7 +304,8 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
   rep.seconds_base = base_s;
   rep.base_vertices = base.mesh.positions.size();
   progress("base mesh: " + std::to_string(rep.base_vertices) + " vertices (" + std::to_string(rep.curled_sites) +
-           " sites added in curled cells, " + std::to_string(rep.promoted_vertices) + " kept by the collapses), " +
+           " sites added in curled cells, " + std::to_string(rep.tip_sites) + " at the tips of narrow holes, " +
+           std::to_string(rep.promoted_vertices) + " kept by the collapses), " +
            std::to_string(base.mesh.triangles.size()) + " triangles; sites " + std::to_string(sites_s) +
            " s, collapses " + std::to_string(base_s) + " s");
 

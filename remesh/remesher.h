@@ -75,6 +75,7 @@ struct RemeshReport {
   size_t base_vertices = 0;       // including promoted ones
   size_t promoted_vertices = 0;   // non-sites the base mesh had to keep (see build_base_mesh)
   size_t curled_sites = 0;        // sites added to split cells that wrap around thin parts (kMinCellFlatness)
+  size_t tip_sites = 0;           // sites added at the tips of narrow holes (remesh/boundary_tips.h)
   // The threshold was judged on a uniform refinement (RefineOptions), not
   // level by level: the input held enough vertices for one.
   bool threshold_after_uniform = false;

@@ -104,6 +104,7 @@ Status run_remesh(const RemeshCliOptions& o) {
         .field("base_vertices", report.base_vertices)
         .field("promoted_vertices", report.promoted_vertices)
         .field("curled_sites", report.curled_sites)
+        .field("tip_sites", report.tip_sites)
         .field("uniform", options.uniform)
         .field("threshold", options.threshold)
         .field("threshold_after_uniform", report.threshold_after_uniform)
