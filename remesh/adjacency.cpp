@@ -1,6 +1,7 @@
 #include "remesh/adjacency.h"
 
 #include <algorithm>
+#include <utility>
 
 namespace srcodec {
 
@@ -44,6 +45,39 @@ Adjacency vertex_triangles(size_t n, const std::vector<std::array<int32_t, 3>>& 
   for (size_t t = 0; t < triangles.size(); ++t)
     for (int32_t v : triangles[t]) adj.items[fill[v]++] = static_cast<int32_t>(t);
   return adj;
+}
+
+int triangles_on_edge(const Adjacency& around, const std::vector<std::array<int32_t, 3>>& triangles, int32_t a,
+                      int32_t b) {
+  int shared = 0;
+  for (const int32_t* t = around.begin(a); t != around.end(a); ++t)
+    shared += std::find(triangles[*t].begin(), triangles[*t].end(), b) != triangles[*t].end();
+  return shared;
+}
+
+std::vector<std::vector<int32_t>> boundary_loops(size_t n, const std::vector<std::array<int32_t, 3>>& triangles,
+                                                 const Adjacency& around) {
+  std::vector<int32_t> next(n, -1);
+  std::vector<char> irregular(n, 0), visited(n, 0);
+  for_each_boundary_edge(triangles, around, [&](int32_t a, int32_t b) {
+    if (next[a] >= 0) irregular[a] = 1;
+    next[a] = b;
+  });
+  std::vector<std::vector<int32_t>> loops;
+  for (size_t start = 0; start < n; ++start) {
+    if (next[start] < 0 || visited[start]) continue;
+    std::vector<int32_t> walk;
+    bool simple = true;
+    int32_t v = static_cast<int32_t>(start);
+    do {  // every vertex is walked once
+      simple = simple && !irregular[v];
+      visited[v] = 1;
+      walk.push_back(v);
+      v = next[v];
+    } while (v >= 0 && !visited[v]);
+    if (simple && v == static_cast<int32_t>(start)) loops.push_back(std::move(walk));
+  }
+  return loops;
 }
 
 }  // namespace srcodec

@@ -25,4 +25,28 @@ Adjacency vertex_neighbors(size_t vertex_count, const std::vector<std::array<int
 // Indices of the triangles around each vertex, in increasing order.
 Adjacency vertex_triangles(size_t vertex_count, const std::vector<std::array<int32_t, 3>>& triangles);
 
+// The triangles of `triangles` around vertex a (`around`: vertex_triangles)
+// that also use vertex b: 1 on a boundary edge, 2 inside, 0 if ab is no edge.
+int triangles_on_edge(const Adjacency& around, const std::vector<std::array<int32_t, 3>>& triangles, int32_t a,
+                      int32_t b);
+
+// Calls edge(a, b) for every boundary edge of `triangles` (one triangle on
+// it), a to b the way that triangle runs.
+template <class Edge>
+void for_each_boundary_edge(const std::vector<std::array<int32_t, 3>>& triangles, const Adjacency& around, Edge&& edge) {
+  for (const auto& t : triangles)
+    for (int c = 0; c < 3; ++c) {
+      const int32_t a = t[c], b = t[(c + 1) % 3];
+      if (triangles_on_edge(around, triangles, a, b) == 1) edge(a, b);
+    }
+}
+
+// The boundary loops of `triangles` (over `vertex_count` vertices;
+// `around`: vertex_triangles), each walked the way its triangles run along
+// it, from its lowest vertex. A loop through a vertex with two boundary
+// edges leaving it is not a simple cycle and is left out.
+std::vector<std::vector<int32_t>> boundary_loops(size_t vertex_count,
+                                                 const std::vector<std::array<int32_t, 3>>& triangles,
+                                                 const Adjacency& around);
+
 }  // namespace srcodec

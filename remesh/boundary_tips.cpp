@@ -1,53 +1,14 @@
 #include "remesh/boundary_tips.h"
 
 #include <Eigen/Core>
-#include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <utility>
 #include <vector>
 
+#include "remesh/adjacency.h"
 #include "remesh/geometry.h"
 
 namespace srcodec {
-namespace {
-
-// The boundary loops of a consistently oriented mesh, each in the order its
-// triangles run along it. A loop through a vertex with two boundary edges
-// leaving it is not a simple cycle and is left out.
-std::vector<std::vector<int32_t>> boundary_loops(const TriangleMesh& mesh) {
-  const size_t n = mesh.positions.size();
-  std::vector<std::pair<int32_t, int32_t>> directed;
-  directed.reserve(3 * mesh.triangles.size());
-  for (const auto& t : mesh.triangles)
-    for (int c = 0; c < 3; ++c) directed.emplace_back(t[c], t[(c + 1) % 3]);
-  std::sort(directed.begin(), directed.end());
-  std::vector<std::vector<int32_t>> out;
-  std::vector<int32_t> next(n, -1);
-  std::vector<char> irregular(n, 0);
-  for (const auto& [a, b] : directed) {
-    if (std::binary_search(directed.begin(), directed.end(), std::make_pair(b, a))) continue;
-    if (next[static_cast<size_t>(a)] >= 0) irregular[static_cast<size_t>(a)] = 1;
-    next[static_cast<size_t>(a)] = b;
-  }
-  std::vector<char> visited(n, 0);
-  for (size_t start = 0; start < n; ++start) {
-    if (next[start] < 0 || visited[start]) continue;
-    std::vector<int32_t> loop;
-    bool simple = true;
-    int32_t v = static_cast<int32_t>(start);
-    do {
-      simple = simple && !irregular[static_cast<size_t>(v)];
-      visited[static_cast<size_t>(v)] = 1;
-      loop.push_back(v);
-      v = next[static_cast<size_t>(v)];
-    } while (v >= 0 && !visited[static_cast<size_t>(v)]);
-    if (simple && v == static_cast<int32_t>(start)) out.push_back(std::move(loop));
-  }
-  return out;
-}
-
-}  // namespace
 
 double boundary_tip_reach(const TriangleMesh& mesh, size_t sites) {
   double area = 0.0;
@@ -58,10 +19,12 @@ double boundary_tip_reach(const TriangleMesh& mesh, size_t sites) {
 
 size_t add_boundary_tip_sites(const TriangleMesh& mesh, const BoundaryTipOptions& options, VoronoiCells* cells) {
   if (!(options.reach > 0.0) || cells->cell_of.size() != mesh.positions.size()) return 0;
-  const std::vector<std::vector<int32_t>> loops = boundary_loops(mesh);
-  std::vector<std::vector<int32_t>> neighbours;  // the mesh's edges around each vertex, once a tip is found
+  const size_t n = mesh.positions.size();
+  const std::vector<std::vector<int32_t>> loops =
+      boundary_loops(n, mesh.triangles, vertex_triangles(n, mesh.triangles));
+  Adjacency neighbours;  // built once a tip is found
   const double max_cosine = std::cos(options.min_turn_degrees * M_PI / 180.0);
-  std::vector<char> is_site(mesh.positions.size(), 0);
+  std::vector<char> is_site(n, 0);
   for (int32_t s : cells->sites) is_site[static_cast<size_t>(s)] = 1;
   size_t added = 0;
   for (const std::vector<int32_t>& loop : loops) {
@@ -100,19 +63,7 @@ size_t add_boundary_tip_sites(const TriangleMesh& mesh, const BoundaryTipOptions
       }
       const size_t tip = static_cast<size_t>(loop[static_cast<size_t>(k)]);
       if (!sharpest || is_site[tip]) continue;
-      if (neighbours.empty()) {
-        neighbours.resize(mesh.positions.size());
-        for (const auto& t : mesh.triangles)
-          for (int corner = 0; corner < 3; ++corner) {
-            const int32_t from = t[corner], to = t[(corner + 1) % 3];
-            neighbours[static_cast<size_t>(from)].push_back(to);
-            neighbours[static_cast<size_t>(to)].push_back(from);
-          }
-        for (auto& around : neighbours) {
-          std::sort(around.begin(), around.end());
-          around.erase(std::unique(around.begin(), around.end()), around.end());
-        }
-      }
+      if (neighbours.size() == 0) neighbours = vertex_neighbors(n, mesh.triangles);
       is_site[tip] = 1;
       const int32_t old_cell = cells->cell_of[tip], new_cell = static_cast<int32_t>(cells->sites.size());
       const Eigen::Vector3d old_site = mesh.positions[static_cast<size_t>(cells->sites[static_cast<size_t>(old_cell)])];
@@ -121,7 +72,9 @@ size_t add_boundary_tip_sites(const TriangleMesh& mesh, const BoundaryTipOptions
       cells->cell_of[tip] = new_cell;
       std::vector<int32_t> reached_from_tip{static_cast<int32_t>(tip)};
       for (size_t q = 0; q < reached_from_tip.size(); ++q)
-        for (int32_t u : neighbours[static_cast<size_t>(reached_from_tip[q])]) {
+        for (const int32_t* it = neighbours.begin(reached_from_tip[q]); it != neighbours.end(reached_from_tip[q]);
+             ++it) {
+          const int32_t u = *it;
           const size_t ui = static_cast<size_t>(u);
           const Eigen::Vector3d& p = mesh.positions[ui];
           if (cells->cell_of[ui] != old_cell || !((p - here).norm() < (p - old_site).norm())) continue;

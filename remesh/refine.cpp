@@ -41,27 +41,6 @@
 namespace srcodec {
 namespace {
 
-// The triangles of `triangles` around vertex a (`around`: vertex_triangles)
-// that also use vertex b: 1 on a boundary edge, 2 inside, 0 if ab is no edge.
-int triangles_on_edge(const Adjacency& around, const std::vector<std::array<int32_t, 3>>& triangles, int32_t a,
-                      int32_t b) {
-  int shared = 0;
-  for (const int32_t* t = around.begin(a); t != around.end(a); ++t)
-    shared += std::find(triangles[*t].begin(), triangles[*t].end(), b) != triangles[*t].end();
-  return shared;
-}
-
-// Calls edge(a, b) for every boundary edge of `triangles` (one triangle on
-// it), a to b the way that triangle runs.
-template <class Edge>
-void for_each_boundary_edge(const std::vector<std::array<int32_t, 3>>& triangles, const Adjacency& around, Edge&& edge) {
-  for (const auto& t : triangles)
-    for (int c = 0; c < 3; ++c) {
-      const int32_t a = t[c], b = t[(c + 1) % 3];
-      if (triangles_on_edge(around, triangles, a, b) == 1) edge(a, b);
-    }
-}
-
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -482,33 +461,14 @@ class Refiner {
   // it: per input vertex its loop (-1: none, or a loop that is not a simple
   // cycle) and its place along it.
   void build_loops() {
-    const size_t n = input_.positions.size();
-    std::vector<int32_t> next(n, -1);
-    std::vector<char> irregular(n, 0), visited(n, 0);
-    for_each_boundary_edge(input_.triangles, input_around_, [&](int32_t a, int32_t b) {
-      if (next[a] >= 0) irregular[a] = 1;
-      next[a] = b;
-    });
-    loop_.assign(n, -1);
-    loop_pos_.assign(n, 0.0);
-    for (size_t start = 0; start < n; ++start) {
-      if (next[start] < 0 || visited[start]) continue;
-      std::vector<int32_t> walk;
-      bool simple = true;
-      int32_t v = static_cast<int32_t>(start);
-      do {  // every vertex is walked once
-        simple = simple && !irregular[v];
-        visited[v] = 1;
-        walk.push_back(v);
-        v = next[v];
-      } while (v >= 0 && !visited[v]);
-      if (!simple || v != static_cast<int32_t>(start)) continue;  // not a simple cycle: no order to keep
-      for (size_t k = 0; k < walk.size(); ++k) {
-        loop_[walk[k]] = static_cast<int32_t>(loop_walk_.size());
-        loop_pos_[walk[k]] = static_cast<double>(k);
+    loop_.assign(input_.positions.size(), -1);
+    loop_pos_.assign(input_.positions.size(), 0.0);
+    loop_walk_ = boundary_loops(input_.positions.size(), input_.triangles, input_around_);
+    for (size_t l = 0; l < loop_walk_.size(); ++l)
+      for (size_t k = 0; k < loop_walk_[l].size(); ++k) {
+        loop_[loop_walk_[l][k]] = static_cast<int32_t>(l);
+        loop_pos_[loop_walk_[l][k]] = static_cast<double>(k);
       }
-      loop_walk_.push_back(std::move(walk));
-    }
   }
 
   // How far along their loop (in its vertices) point `to` comes after point
