@@ -329,6 +329,7 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
   if (options.tolerance_db > 0.0)
     refine_options.tolerance = bounding_box_diagonal(mesh.positions) * std::pow(10.0, -options.tolerance_db / 20.0);
   refine_options.max_lloyd_iterations = options.max_lloyd_iterations;
+  refine_options.follow_detours = options.follow_detours;
   refine_options.progress = options.progress;
   SRCODEC_ASSIGN_OR_RETURN(RefineResult refined, refine(input, base, refine_options, &rep.levels));
   rep.seconds_refine = seconds_since(start);
