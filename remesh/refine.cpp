@@ -179,12 +179,19 @@ class Refiner {
     return false;
   }
 
+  // The input's vertex neighbours, built on first use (by the repairs'
+  // input_disk and path_length; most runs need neither).
+  const Adjacency& input_neighbors() {
+    if (input_neighbors_.size() == 0) input_neighbors_ = vertex_neighbors(input_.positions.size(), input_.triangles);
+    return input_neighbors_;
+  }
+
   // The shortest path along the input's edges from input vertex `from` to
   // `to`, when it is no longer than `limit`: its length, with path_prev_
   // leading back from `to` until clear_path(); infinity otherwise. A* with
   // the straight distance to `to` as the estimate.
   double path_length(int32_t from, int32_t to, double limit) {
-    if (input_neighbors_.size() == 0) input_neighbors_ = vertex_neighbors(input_.positions.size(), input_.triangles);
+    const Adjacency& neighbors = input_neighbors();
     if (path_dist_.empty()) {
       path_dist_.assign(input_.positions.size(), std::numeric_limits<double>::infinity());
       path_prev_.assign(input_.positions.size(), -1);
@@ -202,7 +209,7 @@ class Refiner {
       if (f > limit) break;
       if (i == to) return path_dist_[to];
       if (f > path_dist_[i] + (points_[i] - goal).norm()) continue;  // an older entry
-      for (const int32_t* jt = input_neighbors_.begin(i); jt != input_neighbors_.end(i); ++jt) {
+      for (const int32_t* jt = neighbors.begin(i); jt != neighbors.end(i); ++jt) {
         const int32_t j = *jt;
         const double d = path_dist_[i] + (points_[i] - points_[j]).norm();
         if (d < path_dist_[j]) {
@@ -1257,10 +1264,8 @@ class Refiner {
   // disk (the boundary on the circle by arc length, the inside by convex
   // combinations); no vertices when they do not form a disk.
   InputDisk input_disk(const std::vector<int32_t>& sites, double reach) {
-    if (region_id_.empty()) {  // built on first use: most runs leave no fold for this repair
-      if (input_neighbors_.size() == 0) input_neighbors_ = vertex_neighbors(input_.positions.size(), input_.triangles);
-      region_id_.assign(input_.positions.size(), -1);
-    }
+    const Adjacency& neighbors = input_neighbors();
+    if (region_id_.empty()) region_id_.assign(input_.positions.size(), -1);  // most runs leave no fold for this repair
     InputDisk disk;
     std::vector<double> dist;
     std::vector<std::pair<double, int32_t>> heap;
@@ -1283,7 +1288,7 @@ class Refiner {
       const auto [d, i] = heap.back();
       heap.pop_back();
       if (d > dist[region_id_[i]]) continue;
-      for (const int32_t* n = input_neighbors_.begin(i); n != input_neighbors_.end(i); ++n) {
+      for (const int32_t* n = neighbors.begin(i); n != neighbors.end(i); ++n) {
         const double dn = d + (points_[*n] - points_[i]).norm();
         if (dn <= reach) visit(*n, dn);
       }
