@@ -9,6 +9,7 @@
 
 #include "remesh/fit.h"
 #include "remesh/geometry.h"
+#include "remesh/small_lp.h"
 
 namespace srcodec {
 namespace {
@@ -115,6 +116,74 @@ class Judge {
   std::vector<LevelAdjacency> adjacency_;
 };
 
+// A point near x[v] where every triangle at v, on every level, faces along
+// the sum of its corners' sides. Triangle (v, a, b) does where
+// n(p) . r = r . (a x b) + p . (r x (b - a)) > 0, a half-space in p: a small
+// linear program finds `deepest`, the point within `reach` of x[v] along
+// each axis that is deepest inside all of them (the centre of the largest
+// ball in their intersection), and `nearest` is the point of the way there
+// nearest x[v] still inside them all by a quarter of that depth. False when
+// no point is inside all.
+bool fold_free_point(const std::vector<Triangles>& levels, const Judge& judge, const std::vector<Eigen::Vector3d>& x,
+                     const std::vector<Eigen::Vector3d>& side, int32_t v, double reach, Eigen::Vector3d* deepest,
+                     Eigen::Vector3d* nearest) {
+  const size_t vi = static_cast<size_t>(v);
+  const Eigen::Vector3d& p0 = x[vi];
+  std::vector<Eigen::Vector3d> g;  // per triangle, with p = p0 + d: inside where c + g . d > 0
+  std::vector<double> c;
+  for (size_t k = 0; k < levels.size(); ++k) {
+    const LevelAdjacency& adj = judge.adjacency(k);
+    for (int32_t i = adj.offsets[vi]; i < adj.offsets[vi + 1]; ++i) {
+      const auto& tri = levels[k][static_cast<size_t>(adj.around[static_cast<size_t>(i)])];
+      const int at = tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
+      const size_t a = static_cast<size_t>(tri[(at + 1) % 3]), b = static_cast<size_t>(tri[(at + 2) % 3]);
+      const Eigen::Vector3d r = side[a] + side[b] + side[vi];
+      const Eigen::Vector3d pa = x[a] - p0, pb = x[b] - p0;
+      const Eigen::Vector3d gi = r.cross(pb - pa);
+      if (!(gi.norm() > 1e-12 * (pb - pa).norm())) continue;  // no side to face, or a degenerate edge
+      g.push_back(gi);
+      c.push_back(r.dot(pa.cross(pb)));
+    }
+  }
+  if (g.empty() || !(reach > 0.0)) return false;
+  // Maximize the depth t (the distance inside every half-space) over d in
+  // the box. The simplex wants variables >= 0 with 0 feasible: q = d + reach
+  // in [0, 2 reach] and s = t + t0, t0 deep enough that c + g . d >= |g| t,
+  // that is -g . q + |g| s <= c - reach (g . 1) + |g| t0, has a right-hand
+  // side >= 0.
+  const Eigen::Index m = static_cast<Eigen::Index>(g.size());
+  double t0 = 0.0;
+  for (size_t u = 0; u < g.size(); ++u) t0 = std::max(t0, (reach * g[u].sum() - c[u]) / g[u].norm());
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(m + 4, 4);
+  Eigen::VectorXd rhs(m + 4);
+  for (Eigen::Index i = 0; i < m; ++i) {
+    const size_t u = static_cast<size_t>(i);
+    A.block<1, 3>(i, 0) = -g[u].transpose();
+    A(i, 3) = g[u].norm();
+    rhs(i) = std::max(0.0, c[u] - reach * g[u].sum() + g[u].norm() * t0);
+  }
+  for (Eigen::Index k = 0; k < 3; ++k) {
+    A(m + k, k) = 1.0;
+    rhs(m + k) = 2.0 * reach;
+  }
+  A(m + 3, 3) = 1.0;  // no deeper than the box is wide, which bounds s
+  rhs(m + 3) = t0 + 2.0 * reach;
+  Eigen::VectorXd objective = Eigen::VectorXd::Zero(4), q;
+  objective(3) = 1.0;
+  if (!maximize_lp(A, rhs, objective, &q)) return false;
+  const double depth = q(3) - t0;
+  if (!(depth > 1e-6 * reach)) return false;
+  const Eigen::Vector3d d = q.head<3>() - Eigen::Vector3d::Constant(reach);
+  double lambda = 0.0;  // c + lambda g . d >= |g| depth / 4 for every triangle
+  for (size_t u = 0; u < g.size(); ++u) {
+    const double slope = g[u].dot(d);
+    if (slope > 0.0) lambda = std::max(lambda, (0.25 * depth * g[u].norm() - c[u]) / slope);
+  }
+  *deepest = p0 + d;
+  *nearest = p0 + std::min(lambda, 1.0) * d;
+  return true;
+}
+
 }  // namespace
 
 UntangleReport untangle(const TriangleMesh& sides, const std::vector<Triangles>& levels, const std::vector<char>& fixed,
@@ -177,18 +246,32 @@ UntangleReport untangle(const TriangleMesh& sides, const std::vector<Triangles>&
       centroid /= static_cast<double>(ring.size());
       const Eigen::Vector3d was = x[vi], side_was = side[vi];
       std::vector<Eigen::Vector3d> candidates;
+      auto add_pressed = [&](const Eigen::Vector3d& q) {  // q pressed onto the input's tangent plane near it
+        const std::vector<uint32_t> near = side_at.nearest(q, 1);
+        if (near.empty()) return;
+        const Eigen::Vector3d& normal = side_at.normal(near[0]);
+        candidates.push_back(q - (q - sides.positions[near[0]]).dot(normal) * normal);
+      };
       for (double w : {1.0, 0.5, 0.25}) {
         const Eigen::Vector3d q = was + w * (centroid - was);
         candidates.push_back(q);
-        const std::vector<uint32_t> near = side_at.nearest(q, 1);
-        if (!near.empty()) {
-          const Eigen::Vector3d& normal = side_at.normal(near[0]);
-          candidates.push_back(q - (q - sides.positions[near[0]]).dot(normal) * normal);
-        }
+        add_pressed(q);
       }
       for (uint32_t i : side_at.nearest(centroid, options.input_candidates)) candidates.push_back(sides.positions[i]);
       for (int32_t u : ring)
         for (double w : {0.5, 0.8}) candidates.push_back(was + w * (x[static_cast<size_t>(u)] - was));
+      // And, if there is one within half the ring's mean edge, a point where
+      // every triangle at v faces out (v's side taken as it is now): pressed
+      // onto the input's tangent plane first, then as found.
+      double reach = 0.0;
+      for (int32_t u : ring) reach += (x[static_cast<size_t>(u)] - was).norm();
+      reach *= 0.5 / static_cast<double>(ring.size());
+      Eigen::Vector3d deepest, nearest;
+      if (fold_free_point(levels, judge, x, side, v, reach, &deepest, &nearest))
+        for (const Eigen::Vector3d& q : {nearest, deepest}) {
+          add_pressed(q);
+          candidates.push_back(q);
+        }
       size_t best = now;
       double e_best = e_now;
       Eigen::Vector3d best_at = was, best_side = side_was;

@@ -48,8 +48,11 @@ struct UntangleReport {
 // pleat. Each round takes the vertices of those triangles and their
 // neighbours on the finest level, in increasing order, and tries for each:
 // points toward its neighbours' centroid (also pressed onto the tangent
-// plane of the input there), the input vertices nearest that centroid, and
-// points toward each neighbour. The one leaving the fewest folded triangles
+// plane of the input there), the input vertices nearest that centroid,
+// points toward each neighbour, and, where a linear program finds one within
+// half the mean edge around the vertex, a point where every triangle at it
+// faces along its corners' sides (the deepest such point, and the one
+// nearest the vertex on the way there). The one leaving the fewest folded triangles
 // and pleats around the vertex, all levels counted, is kept when that is
 // fewer than before, or as many but half as deep (by how far past folded
 // and past 150 degrees they are, summed), which lets a later move finish

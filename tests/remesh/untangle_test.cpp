@@ -88,6 +88,33 @@ TEST(Untangle, LeavesFixedVertices) {
   EXPECT_EQ(x, grid.positions);
 }
 
+// A vertex pulled out of a notched ring of fixed neighbours: toward their
+// centroid, toward each of them and on the input vertices nearest the
+// centroid its triangles stay folded (the notch at (0.54, 0.40) hides the
+// centroid's side), but a small region left of the notch unfolds them all.
+// The linear program finds it.
+TEST(Untangle, FindsTheFoldFreeRegionOfANotchedRing) {
+  const TriangleMesh input = test::flat_square(60);
+  std::vector<Eigen::Vector3d> x = {{0.55, 0.68, 0.0}, {0.30, 0.55, 0.0}, {0.56, 0.32, 0.0}, {0.54, 0.40, 0.0},
+                                    {0.58, 0.34, 0.0}, {0.70, 0.30, 0.0}, {0.74, 0.35, 0.0}, {0.08, 0.65, 0.0}};
+  const int32_t v = 7, ring = 7;
+  std::vector<Triangles> levels(1);
+  for (int32_t i = 0; i < ring; ++i) levels[0].push_back({v, i, (i + 1) % ring});
+  std::vector<char> fixed(x.size(), 1);
+  fixed[static_cast<size_t>(v)] = 0;
+  const UntangleReport report = untangle(input, levels, fixed, &x);
+  EXPECT_GT(report.before.folded, 0u);
+  EXPECT_EQ(report.after.folded, 0u);
+  EXPECT_EQ(report.after.pleats, 0u);
+  // Every triangle of the fan turns counterclockwise, seen from +z.
+  for (const auto& t : levels[0]) {
+    const Eigen::Vector3d n = (x[static_cast<size_t>(t[1])] - x[static_cast<size_t>(t[0])])
+                                  .cross(x[static_cast<size_t>(t[2])] - x[static_cast<size_t>(t[0])]);
+    EXPECT_GT(n.z(), 0.0);
+  }
+  EXPECT_NEAR(x[static_cast<size_t>(v)].z(), 0.0, 1e-12);
+}
+
 // Two steep triangles hanging from one edge, both facing up but meeting at
 // more than 150 degrees: a pleat, and both its triangles are marked (the
 // untangling tries the marked triangles' vertices and their neighbours; its
