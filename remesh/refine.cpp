@@ -1771,9 +1771,9 @@ class Refiner {
   std::vector<int32_t> site_of_;  // per input vertex: the site on it, or -1
   size_t midpoint_vertices_ = 0;  // vertices placed off the input so far
   size_t detour_vertices_ = 0;    // new vertices put in the middle of a detour (middle_of_detour)
+  size_t surface_vertices_ = 0;   // new vertices put on the input surface between its vertices
   std::vector<double> path_dist_;  // path_length's, all infinite and -1 after clear_path()
   std::vector<int32_t> path_prev_, path_touched_;
-  size_t surface_vertices_ = 0;   // new vertices put on the input surface between its vertices
   std::vector<std::array<int32_t, 3>> triangles_;  // the current level's mesh
   Adjacency neighbors_, around_;
   std::vector<std::vector<std::array<int32_t, 3>>> coarse_triangles_;  // levels below the current one

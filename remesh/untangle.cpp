@@ -22,6 +22,14 @@ struct LevelAdjacency {
   std::vector<int32_t> offsets, around;  // around[offsets[v] .. offsets[v + 1]): the triangles at v
   std::vector<std::array<int32_t, 3>> across;
 
+  // The triangles at v.
+  std::vector<int32_t>::const_iterator begin(int32_t v) const {
+    return around.begin() + offsets[static_cast<size_t>(v)];
+  }
+  std::vector<int32_t>::const_iterator end(int32_t v) const {
+    return around.begin() + offsets[static_cast<size_t>(v) + 1];
+  }
+
   LevelAdjacency(const Triangles& triangles, size_t n) : offsets(n + 1, 0), across(triangles.size()) {
     for (const auto& t : triangles)
       for (int32_t v : t) ++offsets[static_cast<size_t>(v) + 1];
@@ -72,8 +80,7 @@ class Judge {
     double e = 0.0;
     for (size_t k = 0; k < levels_.size(); ++k) {
       const LevelAdjacency& adj = adjacency_[k];
-      const auto first = adj.around.begin() + adj.offsets[static_cast<size_t>(v)];
-      const auto last = adj.around.begin() + adj.offsets[static_cast<size_t>(v) + 1];
+      const auto first = adj.begin(v), last = adj.end(v);
       for (auto it = first; it != last; ++it) {
         const auto& tri = levels_[k][static_cast<size_t>(*it)];
         const double f = facing(x, side, tri);
@@ -133,8 +140,8 @@ bool fold_free_point(const std::vector<Triangles>& levels, const Judge& judge, c
   std::vector<double> c;
   for (size_t k = 0; k < levels.size(); ++k) {
     const LevelAdjacency& adj = judge.adjacency(k);
-    for (int32_t i = adj.offsets[vi]; i < adj.offsets[vi + 1]; ++i) {
-      const auto& tri = levels[k][static_cast<size_t>(adj.around[static_cast<size_t>(i)])];
+    for (auto it = adj.begin(v); it != adj.end(v); ++it) {
+      const auto& tri = levels[k][static_cast<size_t>(*it)];
       const int at = tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
       const size_t a = static_cast<size_t>(tri[(at + 1) % 3]), b = static_cast<size_t>(tri[(at + 2) % 3]);
       const Eigen::Vector3d r = side[a] + side[b] + side[vi];
@@ -203,8 +210,8 @@ UntangleReport untangle(const TriangleMesh& sides, const std::vector<Triangles>&
   const LevelAdjacency& fine_adj = judge.adjacency(levels.size() - 1);
   auto neighbours = [&](int32_t v) {
     std::vector<int32_t> out;
-    for (int32_t i = fine_adj.offsets[static_cast<size_t>(v)]; i < fine_adj.offsets[static_cast<size_t>(v) + 1]; ++i)
-      for (int32_t u : fine[static_cast<size_t>(fine_adj.around[static_cast<size_t>(i)])])
+    for (auto it = fine_adj.begin(v); it != fine_adj.end(v); ++it)
+      for (int32_t u : fine[static_cast<size_t>(*it)])
         if (u != v) out.push_back(u);
     std::sort(out.begin(), out.end());
     out.erase(std::unique(out.begin(), out.end()), out.end());
