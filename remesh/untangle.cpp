@@ -6,6 +6,8 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
+#include <functional>
+#include <unordered_map>
 
 #include "remesh/fit.h"
 #include "remesh/geometry.h"
@@ -59,6 +61,38 @@ struct LevelAdjacency {
       i = j;
     }
   }
+};
+
+// How many vertices sit at each position, exactly. The untangling moves no
+// vertex onto another's position: its candidates include input vertices,
+// and two vertices moved onto one input vertex are pinched together once
+// the output is read back with coincident vertices welded, as most tools
+// (and our own cleaning) read it.
+class Occupancy {
+ public:
+  explicit Occupancy(const std::vector<Eigen::Vector3d>& x) {
+    count_.reserve(x.size());
+    for (const Eigen::Vector3d& p : x) ++count_[key(p)];
+  }
+  bool taken(const Eigen::Vector3d& p) const { return count_.count(key(p)) > 0; }
+  void move(const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
+    if (from == to) return;
+    const auto it = count_.find(key(from));
+    if (it != count_.end() && --it->second == 0) count_.erase(it);
+    ++count_[key(to)];
+  }
+
+ private:
+  using Key = std::array<double, 3>;
+  struct Hash {
+    size_t operator()(const Key& k) const {
+      size_t h = 0;
+      for (double d : k) h = h * 1000003u ^ std::hash<double>()(d);
+      return h;
+    }
+  };
+  static Key key(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
+  std::unordered_map<Key, int, Hash> count_;
 };
 
 class Judge {
@@ -219,6 +253,7 @@ UntangleReport untangle(const TriangleMesh& sides, const std::vector<Triangles>&
   };
   auto movable = [&](int32_t v) { return !(static_cast<size_t>(v) < fixed.size() && fixed[static_cast<size_t>(v)]); };
 
+  Occupancy occupancy(x);
   std::vector<std::vector<char>> marked;
   report.before = judge.count(x, side, &marked);
   report.after = report.before;
@@ -283,6 +318,7 @@ UntangleReport untangle(const TriangleMesh& sides, const std::vector<Triangles>&
       double e_best = e_now;
       Eigen::Vector3d best_at = was, best_side = side_was;
       for (const Eigen::Vector3d& q : candidates) {
+        if (q != was && occupancy.taken(q)) continue;
         x[vi] = q;
         side[vi] = side_at(q);
         double e = 0.0;
@@ -295,6 +331,7 @@ UntangleReport untangle(const TriangleMesh& sides, const std::vector<Triangles>&
         }
       }
       const bool better = best < now || e_best < e_now;
+      occupancy.move(was, best_at);
       x[vi] = best_at;
       side[vi] = best_side;
       moved += better;

@@ -115,6 +115,33 @@ TEST(Untangle, FindsTheFoldFreeRegionOfANotchedRing) {
   EXPECT_NEAR(x[static_cast<size_t>(v)].z(), 0.0, 1e-12);
 }
 
+// A vertex pulled out of a hexagon of fixed neighbours would go back to
+// their centroid, but another vertex sits exactly there: it goes elsewhere
+// inside, for two vertices at one position are pinched together when the
+// output is read back with coincident vertices welded.
+TEST(Untangle, MovesNoVertexOntoAnother) {
+  const TriangleMesh input = test::flat_square(60);
+  std::vector<Eigen::Vector3d> x;
+  const double pi = std::acos(-1.0);
+  for (int i = 0; i < 6; ++i) x.emplace_back(0.5 + 0.2 * std::cos(i * pi / 3), 0.5 + 0.2 * std::sin(i * pi / 3), 0.0);
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  // as the untangling sums it: the ring in increasing order
+  for (const Eigen::Vector3d& p : x) centroid += p;
+  centroid /= 6.0;
+  const int32_t v = 6, other = 7;
+  x.emplace_back(0.95, 0.5, 0.0);
+  x.push_back(centroid);  // in no triangle of this fan, as if in another part of the mesh
+  std::vector<Triangles> levels(1);
+  for (int32_t i = 0; i < 6; ++i) levels[0].push_back({v, i, (i + 1) % 6});
+  std::vector<char> fixed(x.size(), 1);
+  fixed[static_cast<size_t>(v)] = 0;
+  const UntangleReport report = untangle(input, levels, fixed, &x);
+  EXPECT_GT(report.before.folded, 0u);
+  EXPECT_EQ(report.after.folded, 0u);
+  EXPECT_EQ(report.after.pleats, 0u);
+  EXPECT_NE(x[static_cast<size_t>(v)], x[static_cast<size_t>(other)]);
+  EXPECT_EQ(x[static_cast<size_t>(other)], centroid);
+}
+
 // Two steep triangles hanging from one edge, both facing up but meeting at
 // more than 150 degrees: a pleat, and both its triangles are marked (the
 // untangling tries the marked triangles' vertices and their neighbours; its
