@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <unordered_map>
 #include <unordered_set>
 #include <utility>
 
@@ -78,6 +79,88 @@ void triangulate(const std::vector<int32_t>& face, const std::vector<Eigen::Vect
   }
 }
 
+// For each zero-area triangle (zero[i]) with three distinct corners: the
+// corner m opposite its longest edge p -> q lies between p and q. The one
+// other triangle that has edge q -> p, (q, p, d), is replaced by (q, m, d)
+// followed by (m, p, d), when both have area and m-d is a new edge: the
+// halves take the places of the zero-area triangle's edges p-m and m-q, so
+// dropping it leaves no hole. Triangles split once at most; the new halves
+// are not zero. Returns the triangles split.
+size_t close_needles(const std::vector<Eigen::Vector3d>& pos, std::unordered_set<uint64_t>& edges,
+                     std::vector<char>& zero, std::vector<std::array<int32_t, 3>>& triangles) {
+  struct Needle {
+    int32_t p, q, m;
+    int32_t across = -1;  // the triangle with edge q -> p; -2 when more than one has it
+  };
+  std::vector<Needle> needles;
+  std::unordered_map<uint64_t, size_t> wanted;  // directed edge q -> p, to its needle
+  auto directed = [](int32_t a, int32_t b) {
+    return (static_cast<uint64_t>(static_cast<uint32_t>(a)) << 32) | static_cast<uint32_t>(b);
+  };
+  for (size_t i = 0; i < triangles.size(); ++i) {
+    const auto& t = triangles[i];
+    if (!zero[i] || t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) continue;
+    int longest = 0;  // the edge opposite corner c runs from t[c + 1] to t[c + 2]
+    double length = -1.0;
+    for (int c = 0; c < 3; ++c) {
+      const double l = (pos[t[(c + 1) % 3]] - pos[t[(c + 2) % 3]]).squaredNorm();
+      if (l > length) {
+        length = l;
+        longest = c;
+      }
+    }
+    const Needle n{t[(longest + 1) % 3], t[(longest + 2) % 3], t[longest]};
+    if (wanted.emplace(directed(n.q, n.p), needles.size()).second) needles.push_back(n);
+  }
+  if (needles.empty()) return 0;
+  for (size_t j = 0; j < triangles.size(); ++j) {
+    if (zero[j]) continue;
+    const auto& t = triangles[j];
+    for (int c = 0; c < 3; ++c) {
+      const auto it = wanted.find(directed(t[c], t[(c + 1) % 3]));
+      if (it == wanted.end()) continue;
+      Needle& n = needles[it->second];
+      n.across = n.across == -1 ? static_cast<int32_t>(j) : -2;
+    }
+  }
+  std::vector<char> split(triangles.size(), 0);
+  std::vector<std::pair<size_t, std::array<int32_t, 3>>> second;  // (triangle, the half that follows it)
+  for (const Needle& n : needles) {
+    if (n.across < 0 || split[static_cast<size_t>(n.across)]) continue;
+    auto& t = triangles[static_cast<size_t>(n.across)];
+    int c = 0;
+    while (!(t[c] == n.q && t[(c + 1) % 3] == n.p)) ++c;
+    const int32_t d = t[(c + 2) % 3];
+    if (d == n.m || edges.count(edge_key(n.m, d))) continue;
+    auto area = [&](int32_t a, int32_t b, int32_t e) {
+      return (pos[b] - pos[a]).cross(pos[e] - pos[a]).squaredNorm();
+    };
+    if (!(area(n.q, n.m, d) > 0.0) || !(area(n.m, n.p, d) > 0.0)) continue;
+    split[static_cast<size_t>(n.across)] = 1;
+    edges.insert(edge_key(n.m, d));
+    t = {n.q, n.m, d};
+    second.emplace_back(static_cast<size_t>(n.across), std::array<int32_t, 3>{n.m, n.p, d});
+  }
+  if (second.empty()) return 0;
+  std::sort(second.begin(), second.end());
+  std::vector<std::array<int32_t, 3>> out;
+  std::vector<char> out_zero;
+  out.reserve(triangles.size() + second.size());
+  out_zero.reserve(triangles.size() + second.size());
+  size_t k = 0;
+  for (size_t j = 0; j < triangles.size(); ++j) {
+    out.push_back(triangles[j]);
+    out_zero.push_back(zero[j]);
+    if (k < second.size() && second[k].first == j) {
+      out.push_back(second[k++].second);
+      out_zero.push_back(0);
+    }
+  }
+  triangles.swap(out);
+  zero.swap(out_zero);
+  return second.size();
+}
+
 }  // namespace
 
 TriangleMesh clean_mesh(const PolygonMesh& in, CleanReport* report) {
@@ -114,20 +197,31 @@ TriangleMesh clean_mesh(const PolygonMesh& in, CleanReport* report) {
     }
   }
 
-  // Zero-area and duplicate triangles (either orientation) go; the first
-  // copy of a duplicate stays.
-  std::vector<std::pair<std::array<int32_t, 3>, size_t>> keys;
-  keys.reserve(triangles.size());
-  std::vector<char> keep(triangles.size(), 1);
+  // Zero-area triangles go. Where one has three distinct corners, one of
+  // them, m, lies on the segment between the other two, p and q; dropped
+  // alone it would leave a hole of no width (p-q on one side, p-m-q on the
+  // other), so the triangle across p-q is split at m, which closes it.
+  std::vector<char> zero(triangles.size(), 0);
   for (size_t i = 0; i < triangles.size(); ++i) {
     const auto& t = triangles[i];
     const auto &a = in.positions[t[0]], &b = in.positions[t[1]], &c = in.positions[t[2]];
     if ((b - a).cross(c - a).squaredNorm() == 0.0) {
       ++r.degenerate_faces;
+      zero[i] = 1;
+    }
+  }
+  r.split_faces = close_needles(in.positions, edges, zero, triangles);
+
+  // Duplicate triangles (either orientation) go; the first copy stays.
+  std::vector<std::pair<std::array<int32_t, 3>, size_t>> keys;
+  keys.reserve(triangles.size());
+  std::vector<char> keep(triangles.size(), 1);
+  for (size_t i = 0; i < triangles.size(); ++i) {
+    if (zero[i]) {
       keep[i] = 0;
       continue;
     }
-    std::array<int32_t, 3> key = t;
+    std::array<int32_t, 3> key = triangles[i];
     std::sort(key.begin(), key.end());
     keys.emplace_back(key, i);
   }

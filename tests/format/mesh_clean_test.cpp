@@ -44,6 +44,38 @@ TEST(MeshClean, DropsDegenerateAndDuplicateFaces) {
   EXPECT_EQ(r.unreferenced_vertices, 1u);
 }
 
+// A zero-area triangle whose corners are distinct (m on the segment p-q)
+// between three others: dropped alone it leaves a hole of no width, two
+// boundary loops. The triangle across p-q is split at m instead, and the
+// diamond stays one disk.
+TEST(MeshClean, ClosesTheHoleOfAZeroAreaTriangle) {
+  //          c
+  //   a -----m----- b     (a, b, m) has no area
+  //          d
+  PolygonMesh m = soup({{0, 0, 0}, {2, 0, 0}, {1, 0, 0}, {1, 1, 0}, {1, -1, 0}},
+                       {{0, 1, 3}, {1, 0, 2}, {0, 4, 2}, {2, 4, 1}});
+  CleanReport r;
+  TriangleMesh out = clean_mesh(m, &r);
+  EXPECT_EQ(r.degenerate_faces, 1u);
+  EXPECT_EQ(r.split_faces, 1u);
+  ASSERT_EQ(out.triangles.size(), 4u);
+  EXPECT_EQ(out.triangles[0], (std::array<int32_t, 3>{0, 2, 3}));  // the halves in the split face's place
+  EXPECT_EQ(out.triangles[1], (std::array<int32_t, 3>{2, 1, 3}));
+  const MeshStats s = compute_stats(to_polygon_mesh(out));
+  EXPECT_EQ(s.boundary_loops, 1u);
+  EXPECT_EQ(s.boundary_edges, 4u);
+  EXPECT_EQ(s.nonmanifold_edges, 0u);
+  EXPECT_EQ(s.euler_characteristic, 1);
+  // Without the triangle across (a boundary there), it is only dropped.
+  PolygonMesh open = soup({{0, 0, 0}, {2, 0, 0}, {1, 0, 0}, {1, -1, 0}}, {{1, 0, 2}, {0, 3, 2}, {2, 3, 1}});
+  CleanReport r2;
+  TriangleMesh open_out = clean_mesh(open, &r2);
+  EXPECT_EQ(r2.degenerate_faces, 1u);
+  EXPECT_EQ(r2.split_faces, 0u);
+  ASSERT_EQ(open_out.triangles.size(), 2u);
+  EXPECT_EQ(compute_stats(to_polygon_mesh(open_out)).boundary_loops, 1u);
+}
+
 TEST(MeshClean, TriangulatesPolygonsWithoutDuplicatingEdges) {
   // Two quads sharing two consecutive edges (the corpus's beast.obj has this):
   // a diagonal a naive fan would add twice must be avoided.

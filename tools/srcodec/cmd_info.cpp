@@ -67,9 +67,9 @@ void print_table(const std::string& path, const MeshStats& raw, const MeshStats&
   std::printf("  %-32s %16s %16s\n", "surface", kind(raw).c_str(), kind(clean).c_str());
   std::printf("  %-32s %16.6g %16.6g\n", "bounding-box diagonal", raw.bbox_diagonal, clean.bbox_diagonal);
   std::printf("  cleaning: welded %zu coincident vertices, triangulated %zu polygons, dropped %zu degenerate "
-              "and %zu duplicate faces and %zu unreferenced vertices\n",
+              "and %zu duplicate faces and %zu unreferenced vertices, split %zu faces to close zero-area ones\n",
               r.welded_vertices, r.polygons_triangulated, r.degenerate_faces, r.duplicate_faces,
-              r.unreferenced_vertices);
+              r.unreferenced_vertices, r.split_faces);
 }
 
 // An .srm file is recognized by its first bytes, whatever its name.
@@ -97,6 +97,7 @@ Status run_info(const InfoOptions& o) {
         .field("polygons_triangulated", report.polygons_triangulated)
         .field("degenerate_faces", report.degenerate_faces)
         .field("duplicate_faces", report.duplicate_faces)
+        .field("split_faces", report.split_faces)
         .field("unreferenced_vertices", report.unreferenced_vertices);
     j.object("cleaned", cleaned).object("cleaning", cleaning);
     std::cout << j.str() << "\n";
