@@ -88,26 +88,34 @@ TEST(Untangle, LeavesFixedVertices) {
   EXPECT_EQ(x, grid.positions);
 }
 
+// Vertex v over a ring of fixed vertices 0 .. ring - 1 (every other vertex
+// is fixed too) on a flat input, untangled: its folded fan must unfold.
+// Returns the fan.
+Triangles untangle_fan(std::vector<Eigen::Vector3d>* x, int32_t v, int32_t ring) {
+  const TriangleMesh input = test::flat_square(60);
+  std::vector<Triangles> levels(1);
+  for (int32_t i = 0; i < ring; ++i) levels[0].push_back({v, i, (i + 1) % ring});
+  std::vector<char> fixed(x->size(), 1);
+  fixed[static_cast<size_t>(v)] = 0;
+  const UntangleReport report = untangle(input, levels, fixed, x);
+  EXPECT_GT(report.before.folded, 0u);
+  EXPECT_EQ(report.after.folded, 0u);
+  EXPECT_EQ(report.after.pleats, 0u);
+  return levels[0];
+}
+
 // A vertex pulled out of a notched ring of fixed neighbours: toward their
 // centroid, toward each of them and on the input vertices nearest the
 // centroid its triangles stay folded (the notch at (0.54, 0.40) hides the
 // centroid's side), but a small region left of the notch unfolds them all.
 // The linear program finds it.
 TEST(Untangle, FindsTheFoldFreeRegionOfANotchedRing) {
-  const TriangleMesh input = test::flat_square(60);
   std::vector<Eigen::Vector3d> x = {{0.55, 0.68, 0.0}, {0.30, 0.55, 0.0}, {0.56, 0.32, 0.0}, {0.54, 0.40, 0.0},
                                     {0.58, 0.34, 0.0}, {0.70, 0.30, 0.0}, {0.74, 0.35, 0.0}, {0.08, 0.65, 0.0}};
-  const int32_t v = 7, ring = 7;
-  std::vector<Triangles> levels(1);
-  for (int32_t i = 0; i < ring; ++i) levels[0].push_back({v, i, (i + 1) % ring});
-  std::vector<char> fixed(x.size(), 1);
-  fixed[static_cast<size_t>(v)] = 0;
-  const UntangleReport report = untangle(input, levels, fixed, &x);
-  EXPECT_GT(report.before.folded, 0u);
-  EXPECT_EQ(report.after.folded, 0u);
-  EXPECT_EQ(report.after.pleats, 0u);
+  const int32_t v = 7;
+  const Triangles fan = untangle_fan(&x, v, 7);
   // Every triangle of the fan turns counterclockwise, seen from +z.
-  for (const auto& t : levels[0]) {
+  for (const auto& t : fan) {
     const Eigen::Vector3d n = (x[static_cast<size_t>(t[1])] - x[static_cast<size_t>(t[0])])
                                   .cross(x[static_cast<size_t>(t[2])] - x[static_cast<size_t>(t[0])]);
     EXPECT_GT(n.z(), 0.0);
@@ -120,7 +128,6 @@ TEST(Untangle, FindsTheFoldFreeRegionOfANotchedRing) {
 // inside, for two vertices at one position are pinched together when the
 // output is read back with coincident vertices welded.
 TEST(Untangle, MovesNoVertexOntoAnother) {
-  const TriangleMesh input = test::flat_square(60);
   std::vector<Eigen::Vector3d> x;
   const double pi = std::acos(-1.0);
   for (int i = 0; i < 6; ++i) x.emplace_back(0.5 + 0.2 * std::cos(i * pi / 3), 0.5 + 0.2 * std::sin(i * pi / 3), 0.0);
@@ -130,14 +137,7 @@ TEST(Untangle, MovesNoVertexOntoAnother) {
   const int32_t v = 6, other = 7;
   x.emplace_back(0.95, 0.5, 0.0);
   x.push_back(centroid);  // in no triangle of this fan, as if in another part of the mesh
-  std::vector<Triangles> levels(1);
-  for (int32_t i = 0; i < 6; ++i) levels[0].push_back({v, i, (i + 1) % 6});
-  std::vector<char> fixed(x.size(), 1);
-  fixed[static_cast<size_t>(v)] = 0;
-  const UntangleReport report = untangle(input, levels, fixed, &x);
-  EXPECT_GT(report.before.folded, 0u);
-  EXPECT_EQ(report.after.folded, 0u);
-  EXPECT_EQ(report.after.pleats, 0u);
+  untangle_fan(&x, v, 6);
   EXPECT_NE(x[static_cast<size_t>(v)], x[static_cast<size_t>(other)]);
   EXPECT_EQ(x[static_cast<size_t>(other)], centroid);
 }
