@@ -844,7 +844,7 @@ TEST(Remesher, UntangleUnfoldsOgresThinPieces) {
   EXPECT_EQ(out.components, in.components);
   EXPECT_EQ(out.boundary_loops, in.boundary_loops);
   EXPECT_EQ(out.genus, in.genus);
-  // Read back as a file is (its coincident vertices welded), the output is
+  // Read back as files are read (coincident vertices welded), the output is
   // the same mesh: the untangling put no two vertices at one position.
   EXPECT_EQ(clean_mesh(to_polygon_mesh(finest)).positions.size(), finest.positions.size());
   const UntangleReport& u = report.untangle;
