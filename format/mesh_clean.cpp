@@ -79,6 +79,11 @@ void triangulate(const std::vector<int32_t>& face, const std::vector<Eigen::Vect
   }
 }
 
+// The squared norm of twice triangle abc's area: 0 when it has none.
+double squared_double_area(const std::vector<Eigen::Vector3d>& pos, int32_t a, int32_t b, int32_t c) {
+  return (pos[b] - pos[a]).cross(pos[c] - pos[a]).squaredNorm();
+}
+
 // For each zero-area triangle (zero[i]) with three distinct corners: the
 // corner m opposite its longest edge p -> q lies between p and q. The one
 // other triangle that has edge q -> p, (q, p, d), is replaced by (q, m, d)
@@ -132,10 +137,7 @@ size_t close_needles(const std::vector<Eigen::Vector3d>& pos, std::unordered_set
     while (!(t[c] == n.q && t[(c + 1) % 3] == n.p)) ++c;
     const int32_t d = t[(c + 2) % 3];
     if (d == n.m || edges.count(edge_key(n.m, d))) continue;
-    auto area = [&](int32_t a, int32_t b, int32_t e) {
-      return (pos[b] - pos[a]).cross(pos[e] - pos[a]).squaredNorm();
-    };
-    if (!(area(n.q, n.m, d) > 0.0) || !(area(n.m, n.p, d) > 0.0)) continue;
+    if (!(squared_double_area(pos, n.q, n.m, d) > 0.0) || !(squared_double_area(pos, n.m, n.p, d) > 0.0)) continue;
     split[static_cast<size_t>(n.across)] = 1;
     edges.insert(edge_key(n.m, d));
     t = {n.q, n.m, d};
@@ -204,8 +206,7 @@ TriangleMesh clean_mesh(const PolygonMesh& in, CleanReport* report) {
   std::vector<char> zero(triangles.size(), 0);
   for (size_t i = 0; i < triangles.size(); ++i) {
     const auto& t = triangles[i];
-    const auto &a = in.positions[t[0]], &b = in.positions[t[1]], &c = in.positions[t[2]];
-    if ((b - a).cross(c - a).squaredNorm() == 0.0) {
+    if (squared_double_area(in.positions, t[0], t[1], t[2]) == 0.0) {
       ++r.degenerate_faces;
       zero[i] = 1;
     }
