@@ -47,11 +47,11 @@ def main():
         for name in meshes:
             mesh, out = os.path.join(CORPUS, name), os.path.join(tmp, "out.ply")
             d, err = srcodec(["remesh", mesh, "-o", out, "--json", "--quiet"] + extra)
-            if d is None:
+            src, err = (None, err) if d is None else srcodec(["info", mesh, "--json"])
+            got, err = (None, err) if src is None else srcodec(["info", out, "--json"])
+            if got is None:
                 print(f"| {name} | error: {err} ||||||||||", flush=True)
                 continue
-            src, _ = srcodec(["info", mesh, "--json"])
-            got, _ = srcodec(["info", out, "--json"])
             a, b = shape(src["cleaned"]), shape(got)
             same = "yes" if a == b else "no"
             welded = got["cleaning"]["welded_vertices"]
