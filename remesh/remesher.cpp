@@ -356,13 +356,14 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
     auto counts = [](size_t folded, size_t pleats) {
       return std::to_string(folded) + " folded, " + std::to_string(pleats) + " pleats";
     };
-    progress("untangle: " + std::to_string(r.moved) + " moves in " + std::to_string(r.rounds) +
+    progress("untangle: " + std::to_string(r.moved) + " moves (" + std::to_string(r.joint_moved) + " joint) in " + std::to_string(r.rounds) +
              " rounds; finest level " + counts(was.folded, was.pleats) + " -> " + counts(now.folded, now.pleats) +
              "; coarser levels " + counts(was.coarser_folded, was.coarser_pleats) + " -> " +
              counts(now.coarser_folded, now.coarser_pleats) + ", " + std::to_string(r.seconds) + " s");
     if (rep.untangle.rounds == 0) rep.untangle.before = r.before;
     rep.untangle.after = r.after;
     rep.untangle.moved += r.moved;
+    rep.untangle.joint_moved += r.joint_moved;
     rep.untangle.rounds += r.rounds;
     rep.untangle.seconds += r.seconds;
   };

@@ -95,6 +95,19 @@ class Occupancy {
   std::unordered_map<Key, int, Hash> count_;
 };
 
+// The best of the candidates tried so far: the fewest tangled triangles
+// around, or as many but half as deep.
+struct Choice {
+  size_t count;
+  double energy;
+  bool offer(size_t c, double e) {
+    if (!(c < count || (c == count && e < 0.5 * energy))) return false;
+    count = c;
+    energy = e;
+    return true;
+  }
+};
+
 class Judge {
  public:
   Judge(const TriangleMesh& sides, const std::vector<Triangles>& levels, size_t n)
@@ -135,6 +148,45 @@ class Judge {
     if (energy) *energy = e;
     return count;
   }
+
+  // The folded triangles and pleats among the triangles of every level at
+  // `vertices` (sorted), each pleat once; with `energy`, how deep, as around().
+  size_t region(const std::vector<Eigen::Vector3d>& x, const std::vector<Eigen::Vector3d>& side,
+                const std::vector<int32_t>& vertices, double* energy) const {
+    size_t count = 0;
+    double e = 0.0;
+    for (size_t k = 0; k < levels_.size(); ++k) {
+      const std::vector<int32_t> tris = triangles_at(k, vertices);
+      for (int32_t t : tris) {
+        const auto& tri = levels_[k][static_cast<size_t>(t)];
+        const double f = facing(x, side, tri);
+        if (!(f > kFoldedFacing)) {
+          ++count;
+          e += kFoldedFacing - f;
+        }
+        for (int32_t u : adjacency_[k].across[static_cast<size_t>(t)]) {
+          if (u < 0 || (u < t && std::binary_search(tris.begin(), tris.end(), u))) continue;
+          const Eigen::Vector3d a = triangle_normal(x, tri), b = triangle_normal(x, levels_[k][static_cast<size_t>(u)]);
+          if (pleat(a, b)) {
+            ++count;
+            e += -a.dot(b) / std::max(a.norm() * b.norm(), 1e-300) - 0.8660254;
+          }
+        }
+      }
+    }
+    *energy = e;
+    return count;
+  }
+
+  // Level k's triangles with a corner in `vertices`, sorted.
+  std::vector<int32_t> triangles_at(size_t k, const std::vector<int32_t>& vertices) const {
+    std::vector<int32_t> out;
+    for (int32_t v : vertices) out.insert(out.end(), adjacency_[k].begin(v), adjacency_[k].end(v));
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+  const std::vector<Triangles>& levels() const { return levels_; }
 
   // Every level's folded triangles and pleats, counted, and per level the
   // triangles in either marked.
@@ -225,6 +277,95 @@ bool fold_free_point(const std::vector<Triangles>& levels, const Judge& judge, c
   return true;
 }
 
+// One step of a joint move of the `free` vertices (sorted), with their
+// other neighbours held and every corner's side held: each triangle of any
+// level at them faces along its corners' summed sides r where
+// r . ((b - a) x (c - a)) > 0, which changes by r x (c - b) . d_a with a
+// move d_a of corner a (and so on round the triangle). Linearized in the
+// moves, these are half-spaces, and a linear program finds the moves within
+// reach[i] of each vertex along each axis that take the folded triangles
+// inside theirs, by a depth of a twentieth of the largest reach (or as deep
+// as they go), while the others keep half their facing, moving the vertices
+// least. Sets `to`, the moved positions; false when the program has no
+// answer.
+bool joint_moves(const Judge& judge, const std::vector<Eigen::Vector3d>& x, const std::vector<Eigen::Vector3d>& side,
+                 const std::vector<int32_t>& free, const std::vector<double>& reach,
+                 std::vector<Eigen::Vector3d>* to) {
+  const size_t nf = free.size();
+  auto column = [&](int32_t v) -> Eigen::Index {
+    const auto it = std::lower_bound(free.begin(), free.end(), v);
+    return it != free.end() && *it == v ? static_cast<Eigen::Index>(it - free.begin()) : -1;
+  };
+  struct Row {
+    std::array<Eigen::Index, 3> col;
+    std::array<Eigen::Vector3d, 3> g;
+    double slack;  // how far inside now (negative: outside)
+    double norm;
+    bool tangled;
+  };
+  std::vector<Row> rows;
+  for (size_t k = 0; k < judge.levels().size(); ++k)
+    for (int32_t t : judge.triangles_at(k, free)) {
+      const auto& tri = judge.levels()[k][static_cast<size_t>(t)];
+      const Eigen::Vector3d r = side[static_cast<size_t>(tri[0])] + side[static_cast<size_t>(tri[1])] +
+                                side[static_cast<size_t>(tri[2])];
+      Row row;
+      double squared = 0.0;
+      for (int c = 0; c < 3; ++c) {
+        row.col[static_cast<size_t>(c)] = column(tri[static_cast<size_t>(c)]);
+        const Eigen::Vector3d& next = x[static_cast<size_t>(tri[static_cast<size_t>((c + 1) % 3)])];
+        const Eigen::Vector3d& prev = x[static_cast<size_t>(tri[static_cast<size_t>((c + 2) % 3)])];
+        row.g[static_cast<size_t>(c)] = row.col[static_cast<size_t>(c)] < 0 ? Eigen::Vector3d::Zero()
+                                                                              : Eigen::Vector3d(r.cross(prev - next));
+        squared += row.g[static_cast<size_t>(c)].squaredNorm();
+      }
+      row.norm = std::sqrt(squared);
+      if (!(row.norm > 0.0)) continue;
+      const double sigma = r.dot(triangle_normal(x, tri));
+      row.tangled = !(facing(x, side, tri) > kFoldedFacing);
+      row.slack = row.tangled ? sigma : 0.5 * sigma;
+      rows.push_back(row);
+    }
+  if (rows.empty()) return false;
+  // Moves d = up - down with up, down in [0, reach] (per axis), and the
+  // depth s - t0 of the folded triangles with s >= 0, t0 deep enough that
+  // no move at all is feasible. The program reaches the depth `target` (or
+  // as deep as it can) first, then moves the vertices least (the sum of |d|
+  // over every axis).
+  const Eigen::Index n = static_cast<Eigen::Index>(6 * nf + 1), m = static_cast<Eigen::Index>(rows.size());
+  double t0 = 0.0, widest = 0.0;
+  for (const Row& row : rows)
+    if (row.tangled) t0 = std::max(t0, -row.slack / row.norm);
+  for (double r : reach) widest = std::max(widest, r);
+  const double target = 0.05 * widest;
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(m + n, n);
+  Eigen::VectorXd rhs(m + n);
+  for (Eigen::Index i = 0; i < m; ++i) {
+    const Row& row = rows[static_cast<size_t>(i)];
+    for (size_t c = 0; c < 3; ++c)
+      if (row.col[c] >= 0) {
+        A.block<1, 3>(i, 6 * row.col[c]) -= row.g[c].transpose();
+        A.block<1, 3>(i, 6 * row.col[c] + 3) += row.g[c].transpose();
+      }
+    A(i, n - 1) = row.tangled ? row.norm : 0.0;
+    rhs(i) = std::max(0.0, row.slack + (row.tangled ? row.norm * t0 : 0.0));
+  }
+  for (Eigen::Index j = 0; j + 1 < n; ++j) {
+    A(m + j, j) = 1.0;
+    rhs(m + j) = reach[static_cast<size_t>(j / 6)];
+  }
+  A(m + n - 1, n - 1) = 1.0;
+  rhs(m + n - 1) = t0 + target;
+  Eigen::VectorXd objective = Eigen::VectorXd::Constant(n, -1.0), q;
+  objective(n - 1) = 100.0 * static_cast<double>(n);
+  if (!maximize_lp(A, rhs, objective, &q, static_cast<int>(20 * (m + n)))) return false;
+  to->resize(nf);
+  for (size_t i = 0; i < nf; ++i)
+    (*to)[i] = x[static_cast<size_t>(free[i])] + q.segment<3>(static_cast<Eigen::Index>(6 * i)) -
+               q.segment<3>(static_cast<Eigen::Index>(6 * i + 3));
+  return true;
+}
+
 }  // namespace
 
 UntangleReport untangle(const TriangleMesh& sides, const std::vector<Triangles>& levels, const std::vector<char>& fixed,
@@ -257,6 +398,14 @@ UntangleReport untangle(const TriangleMesh& sides, const std::vector<Triangles>&
   std::vector<std::vector<char>> marked;
   report.before = judge.count(x, side, &marked);
   report.after = report.before;
+  auto press = [&](const Eigen::Vector3d& q, Eigen::Vector3d* out) {  // q onto the input's tangent plane near it
+    const std::vector<uint32_t> near = side_at.nearest(q, 1);
+    if (near.empty()) return false;
+    const Eigen::Vector3d& normal = side_at.normal(near[0]);
+    *out = q - (q - sides.positions[near[0]]).dot(normal) * normal;
+    return true;
+  };
+  auto run_rounds = [&]() {
   for (int round = 0; round < options.rounds; ++round) {
     // The vertices of the tangled triangles of any level, and their
     // neighbours on the finest.
@@ -288,11 +437,9 @@ UntangleReport untangle(const TriangleMesh& sides, const std::vector<Triangles>&
       centroid /= static_cast<double>(ring.size());
       const Eigen::Vector3d was = x[vi], side_was = side[vi];
       std::vector<Eigen::Vector3d> candidates;
-      auto add_pressed = [&](const Eigen::Vector3d& q) {  // q pressed onto the input's tangent plane near it
-        const std::vector<uint32_t> near = side_at.nearest(q, 1);
-        if (near.empty()) return;
-        const Eigen::Vector3d& normal = side_at.normal(near[0]);
-        candidates.push_back(q - (q - sides.positions[near[0]]).dot(normal) * normal);
+      auto add_pressed = [&](const Eigen::Vector3d& q) {
+        Eigen::Vector3d pressed;
+        if (press(q, &pressed)) candidates.push_back(pressed);
       };
       for (double w : {1.0, 0.5, 0.25}) {
         const Eigen::Vector3d q = was + w * (centroid - was);
@@ -314,8 +461,7 @@ UntangleReport untangle(const TriangleMesh& sides, const std::vector<Triangles>&
           add_pressed(q);
           candidates.push_back(q);
         }
-      size_t best = now;
-      double e_best = e_now;
+      Choice best{now, e_now};
       Eigen::Vector3d best_at = was, best_side = side_was;
       for (const Eigen::Vector3d& q : candidates) {
         if (q != was && occupancy.taken(q)) continue;
@@ -323,23 +469,132 @@ UntangleReport untangle(const TriangleMesh& sides, const std::vector<Triangles>&
         side[vi] = side_at(q);
         double e = 0.0;
         const size_t c = judge.around(x, side, v, &e);
-        if (c < best || (c == best && e < 0.5 * e_best)) {
-          best = c;
-          e_best = e;
+        if (best.offer(c, e)) {
           best_at = q;
           best_side = side[vi];
         }
       }
-      const bool better = best < now || e_best < e_now;
+      const bool better = best.count < now || best.energy < e_now;
       occupancy.move(was, best_at);
       x[vi] = best_at;
       side[vi] = best_side;
       moved += better;
     }
     report.moved += moved;
-    report.rounds = round + 1;
+    ++report.rounds;
     report.after = judge.count(x, side, &marked);
     if (moved == 0) break;
+  }
+  };
+
+  // Joint moves: the vertices of the tangled triangles, joined through them
+  // (any level) into clusters, each grown by its finest ring, move together
+  // where single moves have stopped.
+  auto joint_phase = [&]() {
+    std::vector<int32_t> parent(n);
+    for (size_t v = 0; v < n; ++v) parent[v] = static_cast<int32_t>(v);
+    auto find = [&](int32_t v) {
+      while (parent[static_cast<size_t>(v)] != v)
+        v = parent[static_cast<size_t>(v)] = parent[static_cast<size_t>(parent[static_cast<size_t>(v)])];
+      return v;
+    };
+    std::vector<char> tangled(n, 0);
+    for (size_t k = 0; k < levels.size(); ++k)
+      for (size_t t = 0; t < levels[k].size(); ++t)
+        if (marked[k][t]) {
+          const auto& tri = levels[k][t];
+          for (int32_t v : tri) tangled[static_cast<size_t>(v)] = 1;
+          const int32_t a = find(tri[0]);
+          for (int c = 1; c < 3; ++c) {
+            const int32_t b = find(tri[static_cast<size_t>(c)]);
+            if (a != b) parent[static_cast<size_t>(std::max(a, b))] = std::min(a, b);
+          }
+        }
+    std::vector<std::vector<int32_t>> clusters;
+    std::unordered_map<int32_t, size_t> cluster_of;
+    for (size_t v = 0; v < n; ++v)
+      if (tangled[v]) {
+        const auto [it, fresh] = cluster_of.emplace(find(static_cast<int32_t>(v)), clusters.size());
+        if (fresh) clusters.emplace_back();
+        clusters[it->second].push_back(static_cast<int32_t>(v));
+      }
+    size_t kept = 0;
+    for (const std::vector<int32_t>& cluster : clusters) {
+      std::vector<int32_t> free;
+      for (int32_t v : cluster) {
+        if (movable(v)) free.push_back(v);
+        for (int32_t u : neighbours(v))
+          if (movable(u)) free.push_back(u);
+      }
+      std::sort(free.begin(), free.end());
+      free.erase(std::unique(free.begin(), free.end()), free.end());
+      if (free.empty() || free.size() > options.joint_vertices) continue;
+      std::vector<double> reach(free.size(), 0.0);
+      for (size_t i = 0; i < free.size(); ++i) {
+        const std::vector<int32_t> ring = neighbours(free[i]);
+        for (int32_t u : ring) reach[i] += (x[static_cast<size_t>(u)] - x[static_cast<size_t>(free[i])]).norm();
+        reach[i] *= 0.5 / static_cast<double>(std::max<size_t>(ring.size(), 1));
+      }
+      for (int step = 0; step < 8; ++step) {
+        double e_now = 0.0;
+        const size_t now = judge.region(x, side, free, &e_now);
+        if (now == 0) break;
+        std::vector<Eigen::Vector3d> to;
+        if (!joint_moves(judge, x, side, free, reach, &to)) break;
+        std::vector<Eigen::Vector3d> was(free.size()), side_was(free.size());
+        for (size_t i = 0; i < free.size(); ++i) {
+          was[i] = x[static_cast<size_t>(free[i])];
+          side_was[i] = side[static_cast<size_t>(free[i])];
+        }
+        Choice best{now, e_now};
+        std::vector<Eigen::Vector3d> best_at;
+        // The moves whole and in part (the linearization holds for small
+        // ones), each as found and pressed onto the input's tangent plane.
+        std::vector<std::vector<Eigen::Vector3d>> tries;
+        for (double w : {1.0, 0.5, 0.25, 0.125}) {
+          tries.push_back(to);
+          for (size_t i = 0; i < free.size(); ++i) tries.back()[i] = was[i] + w * (to[i] - was[i]);
+        }
+        for (const auto& found : tries)
+          for (bool pressed : {true, false}) {
+            std::vector<Eigen::Vector3d> at = found;
+            bool ok = true;
+            for (size_t i = 0; i < free.size() && ok; ++i) {
+              if (pressed) ok = press(found[i], &at[i]);
+              ok = ok && (at[i] == was[i] || !occupancy.taken(at[i]));
+            }
+            if (!ok) continue;
+            for (size_t i = 0; i < free.size(); ++i) {
+              x[static_cast<size_t>(free[i])] = at[i];
+              side[static_cast<size_t>(free[i])] = side_at(at[i]);
+            }
+            double e = 0.0;
+            const size_t c = judge.region(x, side, free, &e);
+            if (best.offer(c, e)) best_at = at;
+            for (size_t i = 0; i < free.size(); ++i) {
+              x[static_cast<size_t>(free[i])] = was[i];
+              side[static_cast<size_t>(free[i])] = side_was[i];
+            }
+          }
+        if (best_at.empty()) break;
+        for (size_t i = 0; i < free.size(); ++i) {
+          occupancy.move(was[i], best_at[i]);
+          x[static_cast<size_t>(free[i])] = best_at[i];
+          side[static_cast<size_t>(free[i])] = side_at(best_at[i]);
+        }
+        ++kept;
+      }
+    }
+    report.after = judge.count(x, side, &marked);
+    return kept;
+  };
+
+  run_rounds();
+  for (int pass = 0; pass < 2; ++pass) {
+    const size_t kept = joint_phase();
+    report.joint_moved += kept;
+    if (kept == 0) break;
+    run_rounds();
   }
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;

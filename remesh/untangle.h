@@ -24,6 +24,7 @@ namespace srcodec {
 struct UntangleOptions {
   int rounds = 16;              // passes over the tangled vertices, while one moves any
   size_t input_candidates = 8;  // input vertices tried around a vertex's neighbours' centroid
+  size_t joint_vertices = 40;   // the most vertices moved together (0: no joint moves)
 };
 
 // The triangles judged tangled (as FoldCounter judges them), on the finest
@@ -36,6 +37,7 @@ struct TangleCount {
 
 struct UntangleReport {
   size_t moved = 0;  // moves kept, over all rounds
+  size_t joint_moved = 0;  // joint moves kept
   int rounds = 0;    // rounds run
   TangleCount before, after;
   double seconds = 0.0;
@@ -57,6 +59,13 @@ struct UntangleReport {
 // fewer than before, or as many but half as deep (by how far past folded
 // and past 150 degrees they are, summed), which lets a later move finish
 // what this one began. Up to `rounds` rounds, while any vertex moves.
+// Then the tangled triangles' vertices, joined through them into clusters
+// and each cluster grown by its finest ring (up to `joint_vertices`
+// movable vertices), move together: a linear program over all their moves
+// at once, each corner's side held, finds where the folded triangles face
+// out while the others keep facing out, step by step (up to 8 steps a
+// cluster), each step kept when it leaves fewer tangled triangles there (or
+// as many but half as deep); then rounds again, twice at most.
 // Deterministic.
 UntangleReport untangle(const TriangleMesh& sides, const std::vector<std::vector<std::array<int32_t, 3>>>& levels,
                         const std::vector<char>& fixed, std::vector<Eigen::Vector3d>* positions,

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "remesh/fit.h"
+#include "remesh/geometry.h"
 #include "tests/test_util.h"
 
 namespace srcodec {
@@ -72,6 +73,49 @@ TEST(Untangle, UnfoldsPushedVertices) {
   EXPECT_EQ(none.moved, 0u);
   EXPECT_EQ(none.before.folded + none.before.pleats + none.before.coarser_folded + none.before.coarser_pleats, 0u);
   EXPECT_EQ(untouched, flat);
+}
+
+// Four neighbouring vertices pushed by up to an edge each, two swapped, and
+// one of both levels pushed past its neighbours fold triangles of both
+// levels. With the single
+// moves off (no rounds), the joint moves alone unfold them: every triangle
+// of both levels faces up again, in the plane, and only the vertices of the
+// clusters and their rings move. Without joint moves nothing moves.
+TEST(Untangle, JointMovesUnfoldAClusterTogether) {
+  const TriangleMesh input = test::flat_square(60);
+  TwoLevels grid;
+  const int pushed[][2] = {{4, 4}, {5, 4}, {4, 5}, {5, 5}};
+  const double push[][2] = {{1.083, -0.363}, {-0.536, -0.128}, {1.099, -0.769}, {-0.858, -1.0}};
+  for (int i = 0; i < 4; ++i)
+    grid.positions[static_cast<size_t>(TwoLevels::id(pushed[i][0], pushed[i][1]))] +=
+        Eigen::Vector3d(push[i][0], push[i][1], 0.0) / 8.0;
+  std::swap(grid.positions[static_cast<size_t>(TwoLevels::id(1, 7))],
+            grid.positions[static_cast<size_t>(TwoLevels::id(2, 7))]);
+  grid.positions[static_cast<size_t>(TwoLevels::id(6, 2))] += Eigen::Vector3d(-2.6, 0.3, 0.0) / 8.0;  // both levels
+  UntangleOptions options;
+  options.rounds = 0;
+  std::vector<Eigen::Vector3d> x = grid.positions;
+  const UntangleReport report = untangle(input, grid.levels, grid.fixed, &x, options);
+  EXPECT_GT(report.before.folded, 1u);
+  EXPECT_GT(report.before.coarser_folded, 0u);
+  EXPECT_GE(report.joint_moved, 2u);
+  EXPECT_EQ(report.moved, 0u);
+  EXPECT_EQ(report.after.folded + report.after.pleats + report.after.coarser_folded + report.after.coarser_pleats, 0u);
+  for (const Triangles& level : grid.levels)
+    for (const auto& t : level) EXPECT_GT(triangle_normal(x, t).z(), 0.0);
+  for (int j = 0; j <= 8; ++j)
+    for (int i = 0; i <= 8; ++i) {
+      const size_t v = static_cast<size_t>(TwoLevels::id(i, j));
+      EXPECT_EQ(x[v].z(), 0.0);
+      const bool near_a_push = (i >= 2 && i <= 7 && j >= 2 && j <= 7) || (i <= 4 && j >= 5) || (i >= 3 && j <= 4);
+      if (!near_a_push) {
+        EXPECT_EQ(x[v], grid.positions[v]) << i << ", " << j;
+      }
+    }
+  options.joint_vertices = 0;
+  x = grid.positions;
+  EXPECT_EQ(untangle(input, grid.levels, grid.fixed, &x, options).joint_moved, 0u);
+  EXPECT_EQ(x, grid.positions);
 }
 
 // A fixed vertex stays, folded or not.

@@ -120,6 +120,7 @@ Status run_remesh(const RemeshCliOptions& o) {
         .field("untangle", options.fit_surface && options.untangle)
         .field("follow_detours", options.follow_detours)
         .field("untangle_moved", report.untangle.moved)
+        .field("untangle_joint_moved", report.untangle.joint_moved)
         .field("untangle_rounds", report.untangle.rounds)
         .field("untangle_seconds", report.untangle.seconds)
         .field("untangled_folded_by_nearest_input", report.untangle.after.folded)
