@@ -96,12 +96,13 @@ class Occupancy {
 };
 
 // The best of the candidates tried so far: the fewest tangled triangles
-// around, or as many but half as deep.
+// around, or as many but `factor` as deep.
 struct Choice {
   size_t count;
   double energy;
+  double factor = 0.5;
   bool offer(size_t c, double e) {
-    if (!(c < count || (c == count && e < 0.5 * energy))) return false;
+    if (!(c < count || (c == count && e < factor * energy))) return false;
     count = c;
     energy = e;
     return true;
@@ -535,18 +536,24 @@ UntangleReport untangle(const TriangleMesh& sides, const std::vector<Triangles>&
         for (int32_t u : ring) reach[i] += (x[static_cast<size_t>(u)] - x[static_cast<size_t>(free[i])]).norm();
         reach[i] *= 0.5 / static_cast<double>(std::max<size_t>(ring.size(), 1));
       }
-      for (int step = 0; step < 8; ++step) {
+      // A trust region: the reach halves when a step is not kept (the
+      // linearization holds better for smaller moves) and doubles back
+      // when one is.
+      double scale = 1.0;
+      for (int step = 0; step < 12 && scale > 0.07; ++step) {
         double e_now = 0.0;
         const size_t now = judge.region(x, side, free, &e_now);
         if (now == 0) break;
         std::vector<Eigen::Vector3d> to;
-        if (!joint_moves(judge, x, side, free, reach, &to)) break;
+        std::vector<double> scaled = reach;
+        for (double& r : scaled) r *= scale;
+        if (!joint_moves(judge, x, side, free, scaled, &to)) break;
         std::vector<Eigen::Vector3d> was(free.size()), side_was(free.size());
         for (size_t i = 0; i < free.size(); ++i) {
           was[i] = x[static_cast<size_t>(free[i])];
           side_was[i] = side[static_cast<size_t>(free[i])];
         }
-        Choice best{now, e_now};
+        Choice best{now, e_now, 0.99};  // kept if it leaves fewer, or as many a little less deep: the next step goes on
         std::vector<Eigen::Vector3d> best_at;
         // The moves whole and in part (the linearization holds for small
         // ones), each as found and pressed onto the input's tangent plane.
@@ -576,7 +583,11 @@ UntangleReport untangle(const TriangleMesh& sides, const std::vector<Triangles>&
               side[static_cast<size_t>(free[i])] = side_was[i];
             }
           }
-        if (best_at.empty()) break;
+        if (best_at.empty()) {
+          scale *= 0.5;
+          continue;
+        }
+        scale = std::min(1.0, 2.0 * scale);
         for (size_t i = 0; i < free.size(); ++i) {
           occupancy.move(was[i], best_at[i]);
           x[static_cast<size_t>(free[i])] = best_at[i];

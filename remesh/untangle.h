@@ -63,9 +63,10 @@ struct UntangleReport {
 // and each cluster grown by its finest ring (up to `joint_vertices`
 // movable vertices), move together: a linear program over all their moves
 // at once, each corner's side held, finds where the folded triangles face
-// out while the others keep facing out, step by step (up to 8 steps a
+// out while the others keep facing out, step by step (up to 12 steps a
 // cluster), each step kept when it leaves fewer tangled triangles there (or
-// as many but half as deep); then rounds again, twice at most.
+// as many, less deep), the reach halved after a step not kept and doubled
+// back after one kept; then rounds again, twice at most.
 // Deterministic.
 UntangleReport untangle(const TriangleMesh& sides, const std::vector<std::vector<std::array<int32_t, 3>>>& levels,
                         const std::vector<char>& fixed, std::vector<Eigen::Vector3d>* positions,
