@@ -356,8 +356,8 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
     auto counts = [](size_t folded, size_t pleats) {
       return std::to_string(folded) + " folded, " + std::to_string(pleats) + " pleats";
     };
-    progress("untangle: " + std::to_string(r.moved) + " moves (" + std::to_string(r.joint_moved) + " joint) in " + std::to_string(r.rounds) +
-             " rounds; finest level " + counts(was.folded, was.pleats) + " -> " + counts(now.folded, now.pleats) +
+    progress("untangle: " + std::to_string(r.moved) + " moves (" + std::to_string(r.joint_moved) + " joint) in " +
+             std::to_string(r.rounds) + " rounds; finest level " + counts(was.folded, was.pleats) + " -> " + counts(now.folded, now.pleats) +
              "; coarser levels " + counts(was.coarser_folded, was.coarser_pleats) + " -> " +
              counts(now.coarser_folded, now.coarser_pleats) + ", " + std::to_string(r.seconds) + " s");
     if (rep.untangle.rounds == 0) rep.untangle.before = r.before;

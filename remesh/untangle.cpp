@@ -330,7 +330,7 @@ bool joint_moves(const Judge& judge, const std::vector<Eigen::Vector3d>& x, cons
   if (rows.empty()) return false;
   // Moves d = up - down with up, down in [0, reach] (per axis), and the
   // depth s - t0 of the folded triangles with s >= 0, t0 deep enough that
-  // no move at all is feasible. The program reaches the depth `target` (or
+  // staying put (every variable 0) is feasible. The program reaches the depth `target` (or
   // as deep as it can) first, then moves the vertices least (the sum of |d|
   // over every axis).
   const Eigen::Index n = static_cast<Eigen::Index>(6 * nf + 1), m = static_cast<Eigen::Index>(rows.size());
