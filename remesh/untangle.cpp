@@ -124,34 +124,15 @@ class Judge {
   // is below folded and each pleat's dihedral cosine past 150 degrees.
   size_t around(const std::vector<Eigen::Vector3d>& x, const std::vector<Eigen::Vector3d>& side, int32_t v,
                 double* energy = nullptr) const {
-    size_t count = 0;
     double e = 0.0;
-    for (size_t k = 0; k < levels_.size(); ++k) {
-      const LevelAdjacency& adj = adjacency_[k];
-      const auto first = adj.begin(v), last = adj.end(v);
-      for (auto it = first; it != last; ++it) {
-        const auto& tri = levels_[k][static_cast<size_t>(*it)];
-        const double f = facing(x, side, tri);
-        if (!(f > kFoldedFacing)) {
-          ++count;
-          e += kFoldedFacing - f;
-        }
-        for (int32_t u : adj.across[static_cast<size_t>(*it)]) {
-          if (u < 0 || (u < *it && std::find(first, last, u) != last)) continue;  // each pair once
-          const Eigen::Vector3d a = triangle_normal(x, tri), b = triangle_normal(x, levels_[k][static_cast<size_t>(u)]);
-          if (pleat(a, b)) {
-            ++count;
-            e += -a.dot(b) / std::max(a.norm() * b.norm(), 1e-300) - 0.8660254;
-          }
-        }
-      }
-    }
+    const size_t count = region(x, side, {v}, &e);
     if (energy) *energy = e;
     return count;
   }
 
   // The folded triangles and pleats among the triangles of every level at
-  // `vertices` (sorted), each pleat once; with `energy`, how deep, as around().
+  // `vertices` (sorted), each pleat once, and in `energy` how deep they are
+  // (as around()).
   size_t region(const std::vector<Eigen::Vector3d>& x, const std::vector<Eigen::Vector3d>& side,
                 const std::vector<int32_t>& vertices, double* energy) const {
     size_t count = 0;
