@@ -12,6 +12,7 @@
 #include "format/mesh.h"
 #include "format/status.h"
 #include "remesh/fit.h"
+#include "remesh/unsplit_tangles.h"
 #include "remesh/untangle.h"
 #include "remesh/measured_coarsening.h"
 #include "remesh/oversample.h"
@@ -64,6 +65,10 @@ struct RemeshOptions {
   // (remesh/untangle.h; ours). With max_loss_db also before the coarsening,
   // whose loss is then judged against the untangled full refinement.
   bool untangle = true;
+  // With untangle, after it: where triangles are still folded or in a
+  // pleat, the splits of the level below the finest around them undone
+  // (remesh/unsplit_tangles.h; ours), then untangled again.
+  bool unsplit_tangles = true;
   // Follow the input into pockets, creases and gaps narrower than an edge
   // instead of bridging them (RefineOptions::follow_detours; ours, off by
   // default): the bunny at 5 levels no longer swings by 8 dB with the base
@@ -88,9 +93,18 @@ struct RemeshReport {
   std::vector<RefineLevelReport> levels;
   FitReport fit;  // with RemeshOptions::fit_surface
   CoarseningReport coarsening;  // with RemeshOptions::max_loss_db
-  // With RemeshOptions::fit_surface and untangle; both runs summed with
-  // max_loss_db (`before` the first's, `after` the last's).
+  // With RemeshOptions::fit_surface and untangle; every run summed (with
+  // max_loss_db, and with each unsplitting pass kept; `before` the first's,
+  // `after` the last kept's: the output's).
   UntangleReport untangle;
+  // With RemeshOptions::unsplit_tangles: the passes kept, and in them the
+  // stars left whole and the splits undone. The seconds count every pass's
+  // unsplitting (its untangling is in `untangle`).
+  struct Unsplitting {
+    int passes = 0;
+    size_t stars = 0, undone = 0;
+    double seconds = 0.0;
+  } unsplit;
 };
 
 // The default base size: the larger the base mesh, the less the

@@ -127,6 +127,11 @@ Status run_remesh(const RemeshCliOptions& o) {
         .field("untangled_pleats", report.untangle.after.pleats)
         .field("untangled_coarser_folded_by_nearest_input", report.untangle.after.coarser_folded)
         .field("untangled_coarser_pleats", report.untangle.after.coarser_pleats)
+        .field("unsplit_tangles", options.fit_surface && options.untangle && options.unsplit_tangles)
+        .field("unsplit_passes", report.unsplit.passes)
+        .field("unsplit_stars", report.unsplit.stars)
+        .field("unsplit_splits", report.unsplit.undone)
+        .field("unsplit_seconds", report.unsplit.seconds)
         .field("max_loss_db", options.max_loss_db);
     if (options.max_loss_db > 0.0)
       j.field("deepen_fraction", options.deepen_fraction)

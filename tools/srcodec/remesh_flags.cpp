@@ -49,6 +49,11 @@ void add_remesh_flags(CLI::App* cmd, RemeshFlags& f) {
   cmd->add_flag("!--no-untangle", f.untangle,
                 "After the fit, leave the vertices of triangles still folded or in a pleat where they are: by "
                 "default each moves to the nearby place that leaves fewest of them around it, on every level");
+  cmd->add_flag("!--keep-tangled-splits", f.unsplit_tangles,
+                "After the untangling, keep every split of the level below the finest: by default, where "
+                "triangles stay folded or in a pleat, that level's triangles around one of their corners are "
+                "left whole (where their children do not reach out more than twice their edges) and the "
+                "untangling runs again, while that leaves fewer such triangles");
   cmd->add_flag("--follow-detours", f.follow_detours,
                 "Where the input between an edge's ends runs far off the edge (a pocket, a crease, a gap "
                 "narrower than an edge: its path along the input more than 1.6 times the edge), put the edge's "
@@ -77,6 +82,7 @@ StatusOr<RemeshOptions> to_remesh_options(const RemeshFlags& o) {
   r.deepen_fraction = o.deepen_fraction;
   r.fit_surface = o.fit_surface;
   r.untangle = o.untangle;
+  r.unsplit_tangles = o.unsplit_tangles;
   r.follow_detours = o.follow_detours;
   if (o.oversample == "auto") {
     r.oversample = -1;

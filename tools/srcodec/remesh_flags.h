@@ -21,6 +21,7 @@ struct RemeshFlags {
   double deepen_fraction = 0.0;
   bool fit_surface = true;
   bool untangle = true;
+  bool unsplit_tangles = true;
   bool follow_detours = false;
   // Set by add_remesh_flags: without --levels, `levels` is fitted to small
   // inputs (RemeshOptions::fit_levels).
@@ -28,7 +29,7 @@ struct RemeshFlags {
 };
 
 // Adds --levels, --base-vertices, --threshold, --uniform, --tolerance, --max-loss, --deepen, --no-fit-surface,
-// --no-untangle, --follow-detours, --oversample, --scheme.
+// --no-untangle, --keep-tangled-splits, --follow-detours, --oversample, --scheme.
 void add_remesh_flags(CLI::App* cmd, RemeshFlags& flags);
 StatusOr<RemeshOptions> to_remesh_options(const RemeshFlags& flags);
 
