@@ -160,6 +160,32 @@ TEST(Cli, RemeshTextReportNamesLeftoverFolds) {
   EXPECT_EQ(clean.out.find("folds:"), std::string::npos) << clean.out;
 }
 
+// The unsplitting (remesh/unsplit_tangles.h) is on for remesh and off for
+// encode, each with a flag for the other way.
+TEST(Cli, UnsplittingIsOnForRemeshAndOffForEncode) {
+  test::ScratchDir dir;
+  const std::string in = q(test::source_path("data/bunny_npm.obj"));
+  const std::string args = " --json --quiet --levels 2 --samples 20000 " + in + " -o ";
+  auto on = [](const test::CommandResult& r) { return r.out.find("\"unsplit_tangles\": true") != std::string::npos; };
+  auto off = [](const test::CommandResult& r) { return r.out.find("\"unsplit_tangles\": false") != std::string::npos; };
+  auto r = run_srcodec("remesh" + args + q(dir.file("a.obj")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(on(r)) << r.out;
+  r = run_srcodec("remesh --keep-tangled-splits" + args + q(dir.file("b.obj")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(off(r)) << r.out;
+  EXPECT_EQ(json_number(r.out, "unsplit_passes"), 0.0);
+  r = run_srcodec("encode" + args + q(dir.file("c.srm")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(off(r)) << r.out;
+  EXPECT_EQ(json_number(r.out, "unsplit_splits"), 0.0);
+  r = run_srcodec("encode --unsplit-tangles" + args + q(dir.file("d.srm")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(on(r)) << r.out;
+  EXPECT_NE(run_srcodec("encode --keep-tangled-splits" + args + q(dir.file("e.srm"))).exit_code, 0);
+  EXPECT_NE(run_srcodec("remesh --unsplit-tangles" + args + q(dir.file("f.obj"))).exit_code, 0);
+}
+
 TEST(Cli, SubdivideLinearSplitsEveryTriangleInFour) {
   test::ScratchDir dir;
   const std::string in = q(test::source_path("data/bunny_npm.obj")), out = dir.file("lin.obj");

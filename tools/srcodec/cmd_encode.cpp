@@ -40,7 +40,8 @@ Status run_encode(const EncodeCliOptions& o) {
   if (!o.quiet) remesh_options.progress = [](const std::string& line) { std::cerr << "remesh: " << line << std::endl; };
   SRCODEC_ASSIGN_OR_RETURN(TriangleMesh input, read_triangle_mesh(o.input));
   const auto start = std::chrono::steady_clock::now();
-  SRCODEC_ASSIGN_OR_RETURN(SemiRegularMesh srm, remesh(input, remesh_options));
+  RemeshReport remesh_report;
+  SRCODEC_ASSIGN_OR_RETURN(SemiRegularMesh srm, remesh(input, remesh_options, &remesh_report));
   const double remesh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EncodeOptions encode_options;
   encode_options.tangential_factor = o.tangential_factor;
@@ -110,6 +111,8 @@ Status run_encode(const EncodeCliOptions& o) {
         .field("minimum_bytes", static_cast<size_t>(minimum))
         .field("bpv", bpv)
         .field("psnr", psnr)
+        .field("unsplit_tangles", remesh_options.untangle && remesh_options.unsplit_tangles)
+        .field("unsplit_splits", remesh_report.unsplit.undone)
         .field("remesh_seconds", remesh_seconds)
         .field("coding_seconds", coding_seconds);
     std::cout << j.str() << "\n";
@@ -130,7 +133,7 @@ Command add_encode_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("encode", "Remesh and compress a mesh into a progressive .srm file");
   cmd->add_option("mesh", o->input, "Input mesh (OBJ, PLY, OFF, STL)")->required();
   cmd->add_option("-o,--output", o->output, "The .srm file to write")->required();
-  add_remesh_flags(cmd, o->remesh);
+  add_remesh_flags(cmd, o->remesh, /*for_coding=*/true);
   auto* bpv = cmd->add_option("--bpv", o->bpv, "Rate: bits per input vertex")
                   ->check(kFiniteNumber)
                   ->check(CLI::PositiveNumber);

@@ -493,7 +493,7 @@ Command add_rd_command(CLI::App& app) {
   cmd->add_option("mesh", o->input, "Input mesh (OBJ, PLY, OFF, STL)")->required();
   cmd->add_option("-o,--output", o->out_dir, "Folder for rd.csv, rd.png and summary.json (created if missing)")
       ->required();
-  add_remesh_flags(cmd, o->remesh);
+  add_remesh_flags(cmd, o->remesh, /*for_coding=*/true);
   cmd->add_option("--points", o->points, "srcodec rates, log-spaced from the base mesh alone to the whole stream")
       ->check(CLI::Range(2, 100))
       ->capture_default_str();

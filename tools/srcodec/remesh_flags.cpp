@@ -6,7 +6,7 @@
 
 namespace srcodec {
 
-void add_remesh_flags(CLI::App* cmd, RemeshFlags& f) {
+void add_remesh_flags(CLI::App* cmd, RemeshFlags& f, bool for_coding) {
   f.levels_option = cmd->add_option("--levels", f.levels,
                                     "Refinement levels above the base mesh (without this option: fewer for "
                                     "inputs too small for 4, none below 100 vertices)")
@@ -49,11 +49,22 @@ void add_remesh_flags(CLI::App* cmd, RemeshFlags& f) {
   cmd->add_flag("!--no-untangle", f.untangle,
                 "After the fit, leave the vertices of triangles still folded or in a pleat where they are: by "
                 "default each moves to the nearby place that leaves fewest of them around it, on every level");
-  cmd->add_flag("!--keep-tangled-splits", f.unsplit_tangles,
-                "After the untangling, keep every split of the level below the finest: by default, where "
-                "triangles stay folded or in a pleat, that level's triangles around one of their corners are "
-                "left whole (where their children do not reach out more than twice their edges) and the "
-                "untangling runs again, while that leaves fewer such triangles");
+  if (for_coding) {
+    // Off for coding: an adaptive last level costs its refinement flags in
+    // every prefix of the file (388 bytes on beast) and the top of the
+    // curve (README, "Unsplitting").
+    f.unsplit_tangles = false;
+    cmd->add_flag("--unsplit-tangles", f.unsplit_tangles,
+                  "After the untangling, where triangles stay folded or in a pleat, leave the level below the "
+                  "finest whole around one of their corners and untangle again, while that leaves fewer such "
+                  "triangles (as remesh does by default; costs bytes: see README)");
+  } else {
+    cmd->add_flag("!--keep-tangled-splits", f.unsplit_tangles,
+                  "After the untangling, keep every split of the level below the finest: by default, where "
+                  "triangles stay folded or in a pleat, that level's triangles around one of their corners are "
+                  "left whole (where their children do not reach out more than twice their edges) and the "
+                  "untangling runs again, while that leaves fewer such triangles");
+  }
   cmd->add_flag("--follow-detours", f.follow_detours,
                 "Where the input between an edge's ends runs far off the edge (a pocket, a crease, a gap "
                 "narrower than an edge: its path along the input more than 1.6 times the edge), put the edge's "

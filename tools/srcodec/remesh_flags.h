@@ -29,8 +29,11 @@ struct RemeshFlags {
 };
 
 // Adds --levels, --base-vertices, --threshold, --uniform, --tolerance, --max-loss, --deepen, --no-fit-surface,
-// --no-untangle, --keep-tangled-splits, --follow-detours, --oversample, --scheme.
-void add_remesh_flags(CLI::App* cmd, RemeshFlags& flags);
+// --no-untangle, --keep-tangled-splits (or --unsplit-tangles), --follow-detours, --oversample, --scheme.
+// With `for_coding` (encode, rd) the unsplitting is off unless
+// --unsplit-tangles asks for it; remesh has it on, --keep-tangled-splits
+// turns it off.
+void add_remesh_flags(CLI::App* cmd, RemeshFlags& flags, bool for_coding = false);
 StatusOr<RemeshOptions> to_remesh_options(const RemeshFlags& flags);
 
 }  // namespace srcodec
