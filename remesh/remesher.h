@@ -67,7 +67,8 @@ struct RemeshOptions {
   bool untangle = true;
   // With untangle, after it: where triangles are still folded or in a
   // pleat, the splits of the level below the finest around them undone
-  // (remesh/unsplit_tangles.h; ours), then untangled again.
+  // (remesh/unsplit_tangles.h; ours), then untangled again. (The CLI's
+  // encode and rd turn it off: it costs bytes, README "Unsplitting".)
   bool unsplit_tangles = true;
   // Follow the input into pockets, creases and gaps narrower than an edge
   // instead of bridging them (RefineOptions::follow_detours; ours, off by
