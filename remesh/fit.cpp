@@ -80,6 +80,14 @@ Eigen::Vector3d FoldCounter::Sides::operator()(const Eigen::Vector3d& p) const {
   return tree_.knnSearch(p.data(), 1, &i, &d2) == 1 ? normals_[i] : Eigen::Vector3d::Zero().eval();
 }
 
+std::vector<Eigen::Vector3d> FoldCounter::Sides::of(const std::vector<Eigen::Vector3d>& points) const {
+  std::vector<Eigen::Vector3d> out(points.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t v = r.begin(); v != r.end(); ++v) out[v] = (*this)(points[v]);
+  });
+  return out;
+}
+
 std::vector<uint32_t> FoldCounter::Sides::nearest(const Eigen::Vector3d& p, size_t k) const {
   std::vector<uint32_t> out(k);
   std::vector<double> d2(k);
@@ -128,8 +136,7 @@ FitReport fit_to_surface(const TriangleMesh& input, const TriangleMesh& sides,
   // A corner's side of the surface: the normal of the vertex of `sides`
   // nearest it (as the fold recount judges corners off the input).
   const FoldCounter::Sides side_at(sides);
-  std::vector<Eigen::Vector3d> side(n);
-  for (size_t v = 0; v < n; ++v) side[v] = side_at(x[v]);
+  std::vector<Eigen::Vector3d> side = side_at.of(x);
   // Neighbouring triangles of the finest level, and whether they meet at
   // more than 150 degrees (a pleat, as RefineLevelReport::pleats).
   const std::vector<std::pair<int32_t, int32_t>> neighbours = neighbour_pairs(fine);
@@ -304,9 +311,7 @@ FoldCount FoldCounter::operator()(const std::vector<Eigen::Vector3d>& positions,
     if (marked) marked->assign(triangles.size(), 0);
     return FoldCount{};
   }
-  std::vector<Eigen::Vector3d> side(positions.size());
-  for (size_t v = 0; v < positions.size(); ++v) side[v] = (*sides_)(positions[v]);
-  return count_by_sides(positions, side, triangles, marked);
+  return count_by_sides(positions, sides_->of(positions), triangles, marked);
 }
 
 }  // namespace srcodec

@@ -100,6 +100,8 @@ class FoldCounter {
    public:
     explicit Sides(const TriangleMesh& mesh);  // keeps a reference to mesh.positions
     Eigen::Vector3d operator()(const Eigen::Vector3d& p) const;
+    // operator() of each point (in parallel).
+    std::vector<Eigen::Vector3d> of(const std::vector<Eigen::Vector3d>& points) const;
     // The (up to) k vertices of the mesh nearest p, nearest first.
     std::vector<uint32_t> nearest(const Eigen::Vector3d& p, size_t k) const;
     const Eigen::Vector3d& normal(uint32_t vertex) const { return normals_[vertex]; }

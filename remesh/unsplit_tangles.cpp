@@ -1,8 +1,5 @@
 #include "remesh/unsplit_tangles.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -26,18 +23,11 @@ StatusOr<SemiRegularMesh> unsplit_tangles(const TriangleMesh& sides, const SemiR
   const std::vector<Eigen::Vector3d>& x = mesh.positions;
 
   // The finest level's tangled triangles, judged as the untangling judges.
-  std::vector<Eigen::Vector3d> side(x.size());
-  {
-    const FoldCounter::Sides side_at(sides);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, x.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
-      for (size_t v = r.begin(); v != r.end(); ++v) side[v] = side_at(x[v]);
-    });
-  }
+  const std::vector<Eigen::Vector3d> side = FoldCounter::Sides(sides).of(x);
   std::vector<int32_t> node_of;
   const std::vector<std::array<int32_t, 3>> finest = h.level_triangles(top, &node_of);
   std::vector<char> marked;
   rep.before = count_by_sides(x, side, finest, &marked);
-  rep.finest_triangles_before = finest.size();
 
   // The splits that may be undone: of level top - 1, whose children are all
   // leaves; and per vertex, those it is a corner of (its star).
@@ -119,11 +109,7 @@ StatusOr<SemiRegularMesh> unsplit_tangles(const TriangleMesh& sides, const SemiR
       for (size_t t = 0; t < coarse.size(); ++t)
         if (coarse_marked[t]) take(coarse[t]);
     }
-  if (rep.stars == 0) {
-    rep.after = rep.before;
-    rep.finest_triangles_after = rep.finest_triangles_before;
-    return done(mesh);
-  }
+  if (rep.stars == 0) return done(mesh);
 
   // The result: the stars unsplit, with the closure's splits (a star
   // triangle left with two split neighbours is split again).
@@ -133,16 +119,9 @@ StatusOr<SemiRegularMesh> unsplit_tangles(const TriangleMesh& sides, const SemiR
   out.base = mesh.base;
   out.levels = mesh.levels;
   out.positions.resize(old_vertex.size());
-  std::vector<Eigen::Vector3d> out_side(old_vertex.size());
-  for (size_t v = 0; v < old_vertex.size(); ++v) {
-    out.positions[v] = x[static_cast<size_t>(old_vertex[v])];
-    out_side[v] = side[static_cast<size_t>(old_vertex[v])];
-  }
+  for (size_t v = 0; v < old_vertex.size(); ++v) out.positions[v] = x[static_cast<size_t>(old_vertex[v])];
   const std::vector<TriangleHierarchy::Node>& now = out.hierarchy.nodes();
   for (size_t n = 0; n < now.size(); ++n) rep.undone += !keep[static_cast<size_t>(old_node[n])] && now[n].first_child < 0;
-  const std::vector<std::array<int32_t, 3>> after = out.hierarchy.level_triangles(top);
-  rep.after = count_by_sides(out.positions, out_side, after, nullptr);
-  rep.finest_triangles_after = after.size();
   return done(std::move(out));
 }
 

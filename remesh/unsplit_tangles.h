@@ -47,8 +47,7 @@ struct UnsplitOptions {
 struct UnsplitReport {
   size_t stars = 0;   // vertex stars of level L - 1 unsplit
   size_t undone = 0;  // splits undone (the closure may split a star's triangle again)
-  size_t finest_triangles_before = 0, finest_triangles_after = 0;
-  FoldCount before, after;        // the finest level's (the coarser levels do not change)
+  FoldCount before;   // the finest level's tangled triangles in `mesh` (the result is judged by the untangling)
   double seconds = 0.0;
 };
 

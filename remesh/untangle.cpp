@@ -1,7 +1,5 @@
 #include "remesh/untangle.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -359,10 +357,7 @@ UntangleReport untangle(const TriangleMesh& sides, const std::vector<Triangles>&
   const size_t n = x.size();
   const Judge judge(sides, levels, n);
   const FoldCounter::Sides& side_at = judge.side_at();
-  std::vector<Eigen::Vector3d> side(n);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t v = r.begin(); v != r.end(); ++v) side[v] = side_at(x[v]);
-  });
+  std::vector<Eigen::Vector3d> side = side_at.of(x);
   const Triangles& fine = levels.back();
   const LevelAdjacency& fine_adj = judge.adjacency(levels.size() - 1);
   auto neighbours = [&](int32_t v) {
