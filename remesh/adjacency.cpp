@@ -34,6 +34,28 @@ Adjacency vertex_neighbors(size_t n, const std::vector<std::array<int32_t, 3>>& 
   return adj;
 }
 
+std::vector<int32_t> vertex_components(size_t n, const std::vector<std::array<int32_t, 3>>& triangles) {
+  const Adjacency neighbours = vertex_neighbors(n, triangles);
+  std::vector<int32_t> component(n, -1), stack;
+  int32_t next = 0;
+  for (size_t s = 0; s < n; ++s) {
+    if (component[s] >= 0) continue;
+    component[s] = next;
+    stack.assign(1, static_cast<int32_t>(s));
+    while (!stack.empty()) {
+      const int32_t v = stack.back();
+      stack.pop_back();
+      for (const int32_t* u = neighbours.begin(v); u != neighbours.end(v); ++u)
+        if (component[static_cast<size_t>(*u)] < 0) {
+          component[static_cast<size_t>(*u)] = next;
+          stack.push_back(*u);
+        }
+    }
+    ++next;
+  }
+  return component;
+}
+
 Adjacency vertex_triangles(size_t n, const std::vector<std::array<int32_t, 3>>& triangles) {
   Adjacency adj;
   adj.offsets.assign(n + 1, 0);

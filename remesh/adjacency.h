@@ -22,6 +22,11 @@ struct Adjacency {
 // sorted, each once, never the vertex itself. Indices must be in range.
 Adjacency vertex_neighbors(size_t vertex_count, const std::vector<std::array<int32_t, 3>>& triangles);
 
+// Per vertex, the index of its edge-connected component: components are
+// numbered in the order of their lowest vertex; a vertex in no triangle is
+// a component of its own.
+std::vector<int32_t> vertex_components(size_t vertex_count, const std::vector<std::array<int32_t, 3>>& triangles);
+
 // Indices of the triangles around each vertex, in increasing order.
 Adjacency vertex_triangles(size_t vertex_count, const std::vector<std::array<int32_t, 3>>& triangles);
 

@@ -35,7 +35,8 @@ LevelsToMove levels_to_move(const TriangleHierarchy& hierarchy, int32_t levels, 
   LevelsToMove out;
   for (int32_t l = 0; l <= levels; ++l) out.triangles.push_back(hierarchy.level_triangles(l));
   out.fixed = boundary_vertices(vertices, out.triangles.back());
-  std::fill(out.fixed.begin(), out.fixed.begin() + static_cast<std::ptrdiff_t>(base_vertices), 1);
+  for (size_t b = 0; b < base_vertices && b < vertices; ++b)
+    out.fixed[b] = out.fixed[b] ? LevelsToMove::kFixed : LevelsToMove::kOnInputVertices;
   return out;
 }
 

@@ -7,6 +7,7 @@
 #include <functional>
 #include <unordered_map>
 
+#include "remesh/adjacency.h"
 #include "remesh/fit.h"
 #include "remesh/geometry.h"
 #include "remesh/small_lp.h"
@@ -370,6 +371,15 @@ UntangleReport untangle(const TriangleMesh& sides, const std::vector<Triangles>&
     return out;
   };
   auto movable = [&](int32_t v) { return !(static_cast<size_t>(v) < fixed.size() && fixed[static_cast<size_t>(v)]); };
+  // Base vertices, which may only hop onto input vertices of their own
+  // component (the component of the input vertex nearest them).
+  auto hops = [&](int32_t v) {
+    return options.input_vertex_hops > 0 && static_cast<size_t>(v) < fixed.size() &&
+           fixed[static_cast<size_t>(v)] == 2;
+  };
+  const std::vector<int32_t> component =
+      std::any_of(fixed.begin(), fixed.end(), [](char f) { return f == 2; }) ? vertex_components(sides.positions.size(), sides.triangles)
+                                                                            : std::vector<int32_t>{};
 
   Occupancy occupancy(x);
   std::vector<std::vector<char>> marked;
@@ -394,9 +404,9 @@ UntangleReport untangle(const TriangleMesh& sides, const std::vector<Triangles>&
     std::vector<int32_t> order;
     for (size_t v = 0; v < n; ++v)
       if (take[v]) {
-        if (movable(static_cast<int32_t>(v))) order.push_back(static_cast<int32_t>(v));
+        if (movable(static_cast<int32_t>(v)) || hops(static_cast<int32_t>(v))) order.push_back(static_cast<int32_t>(v));
         for (int32_t u : neighbours(static_cast<int32_t>(v)))
-          if (movable(u)) order.push_back(u);
+          if (movable(u) || hops(u)) order.push_back(u);
       }
     std::sort(order.begin(), order.end());
     order.erase(std::unique(order.begin(), order.end()), order.end());
@@ -414,30 +424,38 @@ UntangleReport untangle(const TriangleMesh& sides, const std::vector<Triangles>&
       centroid /= static_cast<double>(ring.size());
       const Eigen::Vector3d was = x[vi], side_was = side[vi];
       std::vector<Eigen::Vector3d> candidates;
-      auto add_pressed = [&](const Eigen::Vector3d& q) {
-        Eigen::Vector3d pressed;
-        if (press(q, &pressed)) candidates.push_back(pressed);
-      };
-      for (double w : {1.0, 0.5, 0.25}) {
-        const Eigen::Vector3d q = was + w * (centroid - was);
-        candidates.push_back(q);
-        add_pressed(q);
-      }
-      for (uint32_t i : side_at.nearest(centroid, options.input_candidates)) candidates.push_back(sides.positions[i]);
-      for (int32_t u : ring)
-        for (double w : {0.5, 0.8}) candidates.push_back(was + w * (x[static_cast<size_t>(u)] - was));
-      // And, if there is one within half the ring's mean edge, a point where
-      // every triangle at v faces out (v's side taken as it is now): pressed
-      // onto the input's tangent plane first, then as found.
-      double reach = 0.0;
-      for (int32_t u : ring) reach += (x[static_cast<size_t>(u)] - was).norm();
-      reach *= 0.5 / static_cast<double>(ring.size());
-      Eigen::Vector3d deepest, nearest;
-      if (fold_free_point(levels, judge, x, side, v, reach, &deepest, &nearest))
-        for (const Eigen::Vector3d& q : {nearest, deepest}) {
-          add_pressed(q);
+      if (hops(v)) {
+        const std::vector<uint32_t> here = side_at.nearest(was, 1);
+        if (here.empty()) continue;
+        for (const Eigen::Vector3d& around : {was, centroid})
+          for (uint32_t i : side_at.nearest(around, options.input_vertex_hops))
+            if (component[i] == component[here[0]]) candidates.push_back(sides.positions[i]);
+      } else {
+        auto add_pressed = [&](const Eigen::Vector3d& q) {
+          Eigen::Vector3d pressed;
+          if (press(q, &pressed)) candidates.push_back(pressed);
+        };
+        for (double w : {1.0, 0.5, 0.25}) {
+          const Eigen::Vector3d q = was + w * (centroid - was);
           candidates.push_back(q);
+          add_pressed(q);
         }
+        for (uint32_t i : side_at.nearest(centroid, options.input_candidates)) candidates.push_back(sides.positions[i]);
+        for (int32_t u : ring)
+          for (double w : {0.5, 0.8}) candidates.push_back(was + w * (x[static_cast<size_t>(u)] - was));
+        // And, if there is one within half the ring's mean edge, a point where
+        // every triangle at v faces out (v's side taken as it is now): pressed
+        // onto the input's tangent plane first, then as found.
+        double reach = 0.0;
+        for (int32_t u : ring) reach += (x[static_cast<size_t>(u)] - was).norm();
+        reach *= 0.5 / static_cast<double>(ring.size());
+        Eigen::Vector3d deepest, nearest;
+        if (fold_free_point(levels, judge, x, side, v, reach, &deepest, &nearest))
+          for (const Eigen::Vector3d& q : {nearest, deepest}) {
+            add_pressed(q);
+            candidates.push_back(q);
+          }
+      }
       Choice best{now, e_now};
       Eigen::Vector3d best_at = was, best_side = side_was;
       for (const Eigen::Vector3d& q : candidates) {

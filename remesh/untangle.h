@@ -25,6 +25,11 @@ struct UntangleOptions {
   int rounds = 16;              // passes over the tangled vertices, while one moves any
   size_t input_candidates = 8;  // input vertices tried around a vertex's neighbours' centroid
   size_t joint_vertices = 40;   // the most vertices moved together (0: no joint moves)
+  // Input vertices tried for a vertex that may only move onto input vertices
+  // (fixed[v] == 2): those nearest it and those nearest its neighbours'
+  // centroid, each as many, on its own component of the input (0: such
+  // vertices stay where they are).
+  size_t input_vertex_hops = 32;
 };
 
 // The triangles judged tangled (as FoldCounter judges them), on the finest
@@ -44,18 +49,23 @@ struct UntangleReport {
 };
 
 // Moves vertices of `levels` (each level's triangles over `positions`; the
-// last is the finest) that are not `fixed`, to leave fewer triangles of any
-// level folded against the normals of the vertices of `sides` (the
-// oversampled input the remesher ran on) nearest their corners, or in a
-// pleat. Each round takes the vertices of those triangles and their
-// neighbours on the finest level, in increasing order, and tries for each:
+// last is the finest) to leave fewer triangles of any level folded against
+// the normals of the vertices of `sides` (the oversampled input the remesher
+// ran on) nearest their corners, or in a pleat. A vertex with fixed[v] == 0
+// moves freely; with fixed[v] == 2 (LevelsToMove::kOnInputVertices: a base
+// vertex, which stays an input vertex) only onto other vertices of `sides`
+// (UntangleOptions::input_vertex_hops); any other stays. Each round takes
+// the vertices of the tangled triangles and their neighbours on the finest
+// level, in increasing order, and tries for each free one:
 // points toward its neighbours' centroid (also pressed onto the tangent
 // plane of the input there), the input vertices nearest that centroid,
 // points toward each neighbour, and, where a linear program finds one within
 // half the mean edge around the vertex, a point where every triangle at it
 // faces along its corners' sides (the deepest such point, and the one
-// nearest the vertex on the way there). The one leaving the fewest folded triangles
-// and pleats around the vertex, all levels counted, is kept when that is
+// nearest the vertex on the way there); for a base vertex, the input
+// vertices of its component nearest it and nearest its neighbours'
+// centroid. The one leaving the fewest folded triangles and pleats around
+// the vertex, all levels counted, is kept when that is
 // fewer than before, or as many but half as deep (by how far past folded
 // and past 150 degrees they are, summed), which lets a later move finish
 // what this one began. Up to `rounds` rounds, while any vertex moves.

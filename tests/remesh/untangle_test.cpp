@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "remesh/fit.h"
@@ -130,6 +131,42 @@ TEST(Untangle, LeavesFixedVertices) {
   EXPECT_GT(report.after.folded, 0u);
   EXPECT_EQ(report.moved, 0u);
   EXPECT_EQ(x, grid.positions);
+}
+
+// A base vertex (fixed == 2) may only move onto input vertices. Pushed past
+// its neighbours, onto an input vertex, it folds triangles of both levels;
+// it hops back near its place, onto another vertex of its own component of
+// the input, though a second component has a vertex nearer its neighbours'
+// centroid. With no hops it stays.
+TEST(Untangle, BaseVerticesHopOntoInputVerticesOfTheirComponent) {
+  TriangleMesh input = test::flat_square(50);  // no vertex at (0.25, 0.25)
+  const size_t own = input.positions.size();
+  for (const Eigen::Vector3d& p : {Eigen::Vector3d(0.25, 0.25, -1e-4), Eigen::Vector3d(0.26, 0.25, -1e-4),
+                                   Eigen::Vector3d(0.25, 0.26, -1e-4)})
+    input.positions.push_back(p);
+  input.triangles.push_back({static_cast<int32_t>(own), static_cast<int32_t>(own + 1), static_cast<int32_t>(own + 2)});
+  TwoLevels grid;
+  const size_t v = static_cast<size_t>(TwoLevels::id(2, 2));  // a base vertex: on level 0
+  grid.positions[v] = Eigen::Vector3d(29 / 50.0, 14 / 50.0, 0.0);  // an input vertex, past its neighbours
+  grid.fixed.assign(grid.positions.size(), 1);
+  grid.fixed[v] = 2;
+  std::vector<Eigen::Vector3d> x = grid.positions;
+  const UntangleReport report = untangle(input, grid.levels, grid.fixed, &x);
+  EXPECT_GT(report.before.folded, 0u);
+  EXPECT_GT(report.before.coarser_folded, 0u);
+  EXPECT_EQ(report.after.folded + report.after.pleats + report.after.coarser_folded + report.after.coarser_pleats, 0u);
+  EXPECT_LT((x[v] - Eigen::Vector3d(0.25, 0.25, 0.0)).norm(), 0.05);
+  const auto on = std::find(input.positions.begin(), input.positions.end(), x[v]);
+  EXPECT_LT(static_cast<size_t>(on - input.positions.begin()), own) << "not a vertex of its own component";
+  for (size_t u = 0; u < x.size(); ++u)
+    if (u != v) {
+      EXPECT_EQ(x[u], grid.positions[u]);
+    }
+  UntangleOptions no_hops;
+  no_hops.input_vertex_hops = 0;
+  std::vector<Eigen::Vector3d> stays = grid.positions;
+  untangle(input, grid.levels, grid.fixed, &stays, no_hops);
+  EXPECT_EQ(stays, grid.positions);
 }
 
 // Vertex v over a ring of fixed vertices 0 .. ring - 1 (every other vertex
