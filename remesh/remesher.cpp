@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <memory>
 
 #include "remesh/base_mesh.h"
 #include "remesh/boundary_tips.h"
@@ -347,11 +348,20 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
              " pleats, " + std::to_string(rep.fit.seconds) + " s");
   }
   SemiRegularMesh out{std::move(base.mesh), std::move(refined.hierarchy), std::move(positions), levels};
+  // The input's sides, search and components, built once for every
+  // untangling and unsplitting pass below.
+  std::unique_ptr<UntangleInput> untangle_input;
+  auto untangle_data = [&]() -> const UntangleInput& {
+    if (!untangle_input) untangle_input = std::make_unique<UntangleInput>(input);
+    return *untangle_input;
+  };
   // The untangling (last; with --max-loss also before the coarsening, so
   // that its loss is judged against the untangled full refinement).
   auto untangle_out = [&](SemiRegularMesh* m) {
     const LevelsToMove tangled = levels_to_move(m->hierarchy, m->levels, m->base.positions.size(), m->positions.size());
-    const UntangleReport r = untangle(input, tangled.triangles, tangled.fixed, &m->positions);
+    const auto set_up = std::chrono::steady_clock::now();
+    UntangleReport r = untangle(untangle_data(), tangled.triangles, tangled.fixed, &m->positions);
+    r.seconds = seconds_since(set_up);  // with the input's set-up, the first time
     const TangleCount &was = r.before, &now = r.after;
     auto counts = [](size_t folded, size_t pleats) {
       return std::to_string(folded) + " folded, " + std::to_string(pleats) + " pleats";
@@ -430,7 +440,7 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
       UnsplitOptions unsplit;
       unsplit.coarser = kind == 1;
       UnsplitReport u;
-      SRCODEC_ASSIGN_OR_RETURN(SemiRegularMesh next, unsplit_tangles(input, out, unsplit, &u));
+      SRCODEC_ASSIGN_OR_RETURN(SemiRegularMesh next, unsplit_tangles(untangle_data().side_at(), out, unsplit, &u));
       rep.unsplit.seconds += u.seconds;
       if (u.stars == 0) break;
       const UntangleReport untangled = rep.untangle;

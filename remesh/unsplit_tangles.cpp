@@ -9,6 +9,15 @@ namespace srcodec {
 
 StatusOr<SemiRegularMesh> unsplit_tangles(const TriangleMesh& sides, const SemiRegularMesh& mesh,
                                           const UnsplitOptions& options, UnsplitReport* report) {
+  if (sides.positions.empty() || sides.triangles.empty()) {
+    if (report) *report = UnsplitReport{};
+    return mesh;
+  }
+  return unsplit_tangles(FoldCounter::Sides(sides), mesh, options, report);
+}
+
+StatusOr<SemiRegularMesh> unsplit_tangles(const FoldCounter::Sides& sides, const SemiRegularMesh& mesh,
+                                          const UnsplitOptions& options, UnsplitReport* report) {
   const auto start = std::chrono::steady_clock::now();
   UnsplitReport rep;
   auto done = [&](SemiRegularMesh out) -> StatusOr<SemiRegularMesh> {
@@ -18,12 +27,12 @@ StatusOr<SemiRegularMesh> unsplit_tangles(const TriangleMesh& sides, const SemiR
   };
   const int32_t top = mesh.levels;
   const TriangleHierarchy& h = mesh.hierarchy;
-  if (top < 1 || h.max_level() < top || sides.positions.empty() || sides.triangles.empty()) return done(mesh);
+  if (top < 1 || h.max_level() < top) return done(mesh);
   const std::vector<TriangleHierarchy::Node>& nodes = h.nodes();
   const std::vector<Eigen::Vector3d>& x = mesh.positions;
 
   // The finest level's tangled triangles, judged as the untangling judges.
-  const std::vector<Eigen::Vector3d> side = FoldCounter::Sides(sides).of(x);
+  const std::vector<Eigen::Vector3d> side = sides.of(x);
   std::vector<int32_t> node_of;
   const std::vector<std::array<int32_t, 3>> finest = h.level_triangles(top, &node_of);
   std::vector<char> marked;

@@ -66,5 +66,9 @@ struct UnsplitReport {
 // dropped. Deterministic. Returns `mesh` when no star is chosen.
 StatusOr<SemiRegularMesh> unsplit_tangles(const TriangleMesh& sides, const SemiRegularMesh& mesh,
                                           const UnsplitOptions& options = {}, UnsplitReport* report = nullptr);
+// The same with the sides of `sides`'s vertices already built (the remesher
+// keeps one across its passes).
+StatusOr<SemiRegularMesh> unsplit_tangles(const FoldCounter::Sides& sides, const SemiRegularMesh& mesh,
+                                          const UnsplitOptions& options = {}, UnsplitReport* report = nullptr);
 
 }  // namespace srcodec

@@ -110,8 +110,8 @@ struct Choice {
 
 class Judge {
  public:
-  Judge(const TriangleMesh& sides, const std::vector<Triangles>& levels, size_t n)
-      : levels_(levels), side_at_(sides) {
+  Judge(const FoldCounter::Sides& side_at, const std::vector<Triangles>& levels, size_t n)
+      : levels_(levels), side_at_(side_at) {
     for (const auto& level : levels) adjacency_.emplace_back(level, n);
   }
 
@@ -176,17 +176,32 @@ class Judge {
     TangleCount out;
     marked->resize(levels_.size());
     for (size_t k = 0; k < levels_.size(); ++k) {
-      const FoldCount c = count_by_sides(x, side, levels_[k], &(*marked)[k]);
+      const Triangles& level = levels_[k];
+      std::vector<char>& mark = (*marked)[k];
+      mark.assign(level.size(), 0);
+      size_t folded = 0, pleats = 0;
+      for (size_t t = 0; t < level.size(); ++t) {
+        if (!(facing(x, side, level[t]) > kFoldedFacing)) {
+          ++folded;
+          mark[t] = 1;
+        }
+        for (int32_t u : adjacency_[k].across[t])  // each pair once, from its lower triangle
+          if (u > static_cast<int32_t>(t) &&
+              pleat(triangle_normal(x, level[t]), triangle_normal(x, level[static_cast<size_t>(u)]))) {
+            ++pleats;
+            mark[t] = mark[static_cast<size_t>(u)] = 1;
+          }
+      }
       const bool finest = k + 1 == levels_.size();
-      (finest ? out.folded : out.coarser_folded) += c.folded_by_nearest_input;
-      (finest ? out.pleats : out.coarser_pleats) += c.pleats;
+      (finest ? out.folded : out.coarser_folded) += folded;
+      (finest ? out.pleats : out.coarser_pleats) += pleats;
     }
     return out;
   }
 
  private:
   const std::vector<Triangles>& levels_;
-  FoldCounter::Sides side_at_;
+  const FoldCounter::Sides& side_at_;
   std::vector<LevelAdjacency> adjacency_;
 };
 
@@ -349,14 +364,25 @@ bool joint_moves(const Judge& judge, const std::vector<Eigen::Vector3d>& x, cons
 
 }  // namespace
 
+UntangleInput::UntangleInput(const TriangleMesh& sides)
+    : mesh_(sides), side_at_(sides), component_(vertex_components(sides.positions.size(), sides.triangles)) {}
+
 UntangleReport untangle(const TriangleMesh& sides, const std::vector<Triangles>& levels, const std::vector<char>& fixed,
                         std::vector<Eigen::Vector3d>* positions, const UntangleOptions& options) {
+  if (levels.empty() || levels.back().empty() || sides.positions.empty() || sides.triangles.empty()) return {};
+  return untangle(UntangleInput(sides), levels, fixed, positions, options);
+}
+
+UntangleReport untangle(const UntangleInput& input, const std::vector<Triangles>& levels,
+                        const std::vector<char>& fixed, std::vector<Eigen::Vector3d>* positions,
+                        const UntangleOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   UntangleReport report;
+  const TriangleMesh& sides = input.mesh();
   if (levels.empty() || levels.back().empty() || sides.positions.empty() || sides.triangles.empty()) return report;
   std::vector<Eigen::Vector3d>& x = *positions;
   const size_t n = x.size();
-  const Judge judge(sides, levels, n);
+  const Judge judge(input.side_at(), levels, n);
   const FoldCounter::Sides& side_at = judge.side_at();
   std::vector<Eigen::Vector3d> side = side_at.of(x);
   const Triangles& fine = levels.back();
@@ -377,9 +403,7 @@ UntangleReport untangle(const TriangleMesh& sides, const std::vector<Triangles>&
     return options.input_vertex_hops > 0 && static_cast<size_t>(v) < fixed.size() &&
            fixed[static_cast<size_t>(v)] == 2;
   };
-  const std::vector<int32_t> component =
-      std::any_of(fixed.begin(), fixed.end(), [](char f) { return f == 2; }) ? vertex_components(sides.positions.size(), sides.triangles)
-                                                                            : std::vector<int32_t>{};
+  const std::vector<int32_t>& component = input.component();
 
   Occupancy occupancy(x);
   std::vector<std::vector<char>> marked;

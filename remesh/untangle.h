@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "format/mesh.h"
+#include "remesh/fit.h"
 
 namespace srcodec {
 
@@ -46,6 +47,23 @@ struct UntangleReport {
   int rounds = 0;    // rounds run
   TangleCount before, after;
   double seconds = 0.0;
+};
+
+// What the untangling looks up in the input (`sides`): its vertices' sides
+// and a search over them, and its components. Built once and kept across
+// calls on one input (the remesher untangles up to nine times).
+class UntangleInput {
+ public:
+  explicit UntangleInput(const TriangleMesh& sides);  // keeps a reference to it
+  const TriangleMesh& mesh() const { return mesh_; }
+  const FoldCounter::Sides& side_at() const { return side_at_; }
+  // Per vertex of `sides`, its edge-connected component.
+  const std::vector<int32_t>& component() const { return component_; }
+
+ private:
+  const TriangleMesh& mesh_;
+  FoldCounter::Sides side_at_;
+  std::vector<int32_t> component_;
 };
 
 // Moves vertices of `levels` (each level's triangles over `positions`; the
@@ -78,6 +96,10 @@ struct UntangleReport {
 // as many, less deep), the reach halved after a step not kept and doubled
 // back after one kept; then rounds again, twice at most.
 // Deterministic.
+UntangleReport untangle(const UntangleInput& sides, const std::vector<std::vector<std::array<int32_t, 3>>>& levels,
+                        const std::vector<char>& fixed, std::vector<Eigen::Vector3d>* positions,
+                        const UntangleOptions& options = {});
+// The same with the input's UntangleInput built for this call.
 UntangleReport untangle(const TriangleMesh& sides, const std::vector<std::vector<std::array<int32_t, 3>>>& levels,
                         const std::vector<char>& fixed, std::vector<Eigen::Vector3d>* positions,
                         const UntangleOptions& options = {});
