@@ -24,7 +24,8 @@ struct SemiRegularMesh {
   // few sites moved to untangle folds; RefineLevelReport counts each kind.
   // With RemeshOptions::fit_surface (the default) the vertices above the
   // base mesh, but for the boundary's, then leave them along their normals
-  // (remesh/fit.h); base vertices stay where the sites are.
+  // (remesh/fit.h); base vertices stay on input vertices, where the sites
+  // are or, where the untangling moved them, others (remesh/untangle.h).
   std::vector<Eigen::Vector3d> positions;
   int32_t levels = 0;  // the finest level built (hierarchy.max_level() may be lower if nothing was split)
 
