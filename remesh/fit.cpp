@@ -107,6 +107,12 @@ bool faces_out(const std::vector<Eigen::Vector3d>& p, const std::vector<Eigen::V
 
 FoldCount count_by_sides(const std::vector<Eigen::Vector3d>& positions, const std::vector<Eigen::Vector3d>& side,
                          const std::vector<std::array<int32_t, 3>>& triangles, std::vector<char>* marked) {
+  return count_by_sides(positions, side, triangles, neighbour_pairs(triangles), marked);
+}
+
+FoldCount count_by_sides(const std::vector<Eigen::Vector3d>& positions, const std::vector<Eigen::Vector3d>& side,
+                         const std::vector<std::array<int32_t, 3>>& triangles,
+                         const std::vector<std::pair<int32_t, int32_t>>& neighbours, std::vector<char>* marked) {
   FoldCount count;
   if (marked) marked->assign(triangles.size(), 0);
   for (size_t t = 0; t < triangles.size(); ++t)
@@ -114,7 +120,7 @@ FoldCount count_by_sides(const std::vector<Eigen::Vector3d>& positions, const st
       ++count.folded_by_nearest_input;
       if (marked) (*marked)[t] = 1;
     }
-  for (const auto& [t, u] : neighbour_pairs(triangles))
+  for (const auto& [t, u] : neighbours)
     if (pleat(triangle_normal(positions, triangles[t]), triangle_normal(positions, triangles[u]))) {
       ++count.pleats;
       if (marked) (*marked)[t] = (*marked)[u] = 1;
@@ -294,7 +300,7 @@ FitReport fit_to_surface(const TriangleMesh& input, const TriangleMesh& sides,
       }
     report.mean_offset = report.moved ? total / static_cast<double>(report.moved) : 0.0;
   }
-  const FoldCount left = count_by_sides(x, side, fine, nullptr);
+  const FoldCount left = count_by_sides(x, side, fine, neighbours, nullptr);
   report.folded_by_nearest_input = left.folded_by_nearest_input;
   report.pleats = left.pleats;
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

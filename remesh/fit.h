@@ -23,6 +23,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "format/mesh.h"
@@ -86,6 +87,11 @@ struct FoldCount {
 // FoldCounter's count, with each vertex's side (the normal judging it) given.
 FoldCount count_by_sides(const std::vector<Eigen::Vector3d>& positions, const std::vector<Eigen::Vector3d>& side,
                          const std::vector<std::array<int32_t, 3>>& triangles, std::vector<char>* marked = nullptr);
+// The same with the pairs of neighbouring triangles given (each pair once),
+// for a caller that counts one set of triangles many times.
+FoldCount count_by_sides(const std::vector<Eigen::Vector3d>& positions, const std::vector<Eigen::Vector3d>& side,
+                         const std::vector<std::array<int32_t, 3>>& triangles,
+                         const std::vector<std::pair<int32_t, int32_t>>& neighbours, std::vector<char>* marked);
 
 class FoldCounter {
  public:

@@ -434,7 +434,7 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
   // kind. (Fitting the corners left whole to the input again, as the
   // measured coarsening does, cost ogre 9 s a pass and 0.1 dB.)
   auto tangled = [](const TangleCount& c) { return c.folded + c.pleats + c.coarser_folded + c.coarser_pleats; };
-  const bool unsplitting = untangling && options.unsplit_tangles && out.levels > 0;
+  const bool unsplitting = options.unsplits() && out.levels > 0;
   for (int kind = 0; unsplitting && kind < 2; ++kind)
     for (int pass = 0; pass < 4 && tangled(rep.untangle.after) > 0; ++pass) {
       UnsplitOptions unsplit;

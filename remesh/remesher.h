@@ -70,6 +70,8 @@ struct RemeshOptions {
   // (remesh/unsplit_tangles.h; ours), then untangled again. (The CLI's
   // encode and rd turn it off: it costs bytes, README "Unsplitting".)
   bool unsplit_tangles = true;
+  // Whether the unsplitting runs: it needs the fit and the untangling.
+  bool unsplits() const { return fit_surface && untangle && unsplit_tangles; }
   // Follow the input into pockets, creases and gaps narrower than an edge
   // instead of bridging them (RefineOptions::follow_detours; ours, off by
   // default): the bunny at 5 levels no longer swings by 8 dB with the base

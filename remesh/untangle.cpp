@@ -112,7 +112,13 @@ class Judge {
  public:
   Judge(const FoldCounter::Sides& side_at, const std::vector<Triangles>& levels, size_t n)
       : levels_(levels), side_at_(side_at) {
-    for (const auto& level : levels) adjacency_.emplace_back(level, n);
+    for (const auto& level : levels) {
+      adjacency_.emplace_back(level, n);
+      neighbours_.emplace_back();
+      for (size_t t = 0; t < level.size(); ++t)
+        for (int32_t u : adjacency_.back().across[t])  // each pair once, from its lower triangle
+          if (u > static_cast<int32_t>(t)) neighbours_.back().emplace_back(static_cast<int32_t>(t), u);
+    }
   }
 
   const FoldCounter::Sides& side_at() const { return side_at_; }
@@ -176,25 +182,10 @@ class Judge {
     TangleCount out;
     marked->resize(levels_.size());
     for (size_t k = 0; k < levels_.size(); ++k) {
-      const Triangles& level = levels_[k];
-      std::vector<char>& mark = (*marked)[k];
-      mark.assign(level.size(), 0);
-      size_t folded = 0, pleats = 0;
-      for (size_t t = 0; t < level.size(); ++t) {
-        if (!(facing(x, side, level[t]) > kFoldedFacing)) {
-          ++folded;
-          mark[t] = 1;
-        }
-        for (int32_t u : adjacency_[k].across[t])  // each pair once, from its lower triangle
-          if (u > static_cast<int32_t>(t) &&
-              pleat(triangle_normal(x, level[t]), triangle_normal(x, level[static_cast<size_t>(u)]))) {
-            ++pleats;
-            mark[t] = mark[static_cast<size_t>(u)] = 1;
-          }
-      }
+      const FoldCount c = count_by_sides(x, side, levels_[k], neighbours_[k], &(*marked)[k]);
       const bool finest = k + 1 == levels_.size();
-      (finest ? out.folded : out.coarser_folded) += folded;
-      (finest ? out.pleats : out.coarser_pleats) += pleats;
+      (finest ? out.folded : out.coarser_folded) += c.folded_by_nearest_input;
+      (finest ? out.pleats : out.coarser_pleats) += c.pleats;
     }
     return out;
   }
@@ -203,6 +194,7 @@ class Judge {
   const std::vector<Triangles>& levels_;
   const FoldCounter::Sides& side_at_;
   std::vector<LevelAdjacency> adjacency_;
+  std::vector<std::vector<std::pair<int32_t, int32_t>>> neighbours_;  // per level, each pair of neighbours once
 };
 
 // A point near x[v] where every triangle at v, on every level, faces along

@@ -111,8 +111,7 @@ Status run_encode(const EncodeCliOptions& o) {
         .field("minimum_bytes", static_cast<size_t>(minimum))
         .field("bpv", bpv)
         .field("psnr", psnr)
-        .field("unsplit_tangles",
-               remesh_options.fit_surface && remesh_options.untangle && remesh_options.unsplit_tangles)
+        .field("unsplit_tangles", remesh_options.unsplits())
         .field("unsplit_splits", remesh_report.unsplit.undone)
         .field("remesh_seconds", remesh_seconds)
         .field("coding_seconds", coding_seconds);

@@ -127,7 +127,7 @@ Status run_remesh(const RemeshCliOptions& o) {
         .field("untangled_pleats", report.untangle.after.pleats)
         .field("untangled_coarser_folded_by_nearest_input", report.untangle.after.coarser_folded)
         .field("untangled_coarser_pleats", report.untangle.after.coarser_pleats)
-        .field("unsplit_tangles", options.fit_surface && options.untangle && options.unsplit_tangles)
+        .field("unsplit_tangles", options.unsplits())
         .field("unsplit_passes", report.unsplit.passes)
         .field("unsplit_stars", report.unsplit.stars)
         .field("unsplit_splits", report.unsplit.undone)
