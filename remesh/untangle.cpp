@@ -457,6 +457,9 @@ UntangleReport untangle(const UntangleInput& input, const std::vector<Triangles>
           add_pressed(q);
         }
         for (uint32_t i : side_at.nearest(centroid, options.input_candidates)) candidates.push_back(sides.positions[i]);
+        if (options.wide_candidates > 0)
+          for (const Eigen::Vector3d& around : {was, centroid})
+            for (uint32_t i : side_at.nearest(around, options.wide_candidates)) candidates.push_back(sides.positions[i]);
         for (int32_t u : ring)
           for (double w : {0.5, 0.8}) candidates.push_back(was + w * (x[static_cast<size_t>(u)] - was));
         // And, if there is one within half the ring's mean edge, a point where

@@ -31,6 +31,11 @@ struct UntangleOptions {
   // centroid, each as many, on its own component of the input (0: such
   // vertices stay where they are).
   size_t input_vertex_hops = 32;
+  // A wider search for a free vertex (fixed[v] == 0): also the input
+  // vertices nearest it and those nearest its neighbours' centroid, this
+  // many each (0: none). The remesher runs one pass with it, last, where
+  // triangles stay tangled after the unsplitting (remesh/remesher.cpp).
+  size_t wide_candidates = 0;
 };
 
 // The triangles judged tangled (as FoldCounter judges them), on the finest
@@ -80,7 +85,8 @@ class UntangleInput {
 // points toward each neighbour, and, where a linear program finds one within
 // half the mean edge around the vertex, a point where every triangle at it
 // faces along its corners' sides (the deepest such point, and the one
-// nearest the vertex on the way there); for a base vertex, the input
+// nearest the vertex on the way there), and with wide_candidates the input
+// vertices nearest the vertex and its centroid; for a base vertex, the input
 // vertices of its component nearest it and nearest its neighbours'
 // centroid. The one leaving the fewest folded triangles and pleats around
 // the vertex, all levels counted, is kept when that is

@@ -185,6 +185,37 @@ Triangles untangle_fan(std::vector<Eigen::Vector3d>* x, int32_t v, int32_t ring)
   return levels[0];
 }
 
+// Four vertices pushed up to three cells away fold triangles of both
+// levels. With the joint moves off, the single moves leave one tangled; the
+// wider search, which also tries the input vertices nearest each vertex and
+// nearest its neighbours' centroid (128 each), unfolds every triangle.
+TEST(Untangle, WideSearchUnfoldsWhereTheNearOneStops) {
+  const TriangleMesh input = test::flat_square(60);
+  TwoLevels grid;
+  const int pushed[][2] = {{5, 5}, {6, 1}, {6, 5}, {1, 6}};
+  const double push[][2] = {{2.65, -2.72}, {-2.08, -0.36}, {-2.25, -1.96}, {-0.33, -0.4}};
+  for (int i = 0; i < 4; ++i)
+    grid.positions[static_cast<size_t>(TwoLevels::id(pushed[i][0], pushed[i][1]))] +=
+        Eigen::Vector3d(push[i][0], push[i][1], 0.0) / 8.0;
+  auto tangled = [](const TangleCount& c) { return c.folded + c.pleats + c.coarser_folded + c.coarser_pleats; };
+  UntangleOptions options;
+  options.joint_vertices = 0;
+  std::vector<Eigen::Vector3d> near = grid.positions;
+  const UntangleReport without = untangle(input, grid.levels, grid.fixed, &near, options);
+  EXPECT_GT(tangled(without.before), 10u);
+  EXPECT_GT(tangled(without.after), 0u);
+  options.wide_candidates = 128;
+  std::vector<Eigen::Vector3d> wide = grid.positions;
+  const UntangleReport with = untangle(input, grid.levels, grid.fixed, &wide, options);
+  EXPECT_EQ(tangled(with.after), 0u);
+  for (const Triangles& level : grid.levels)
+    for (const auto& t : level) EXPECT_GT(triangle_normal(wide, t).z(), 0.0);
+  for (size_t v = 0; v < wide.size(); ++v)
+    if (grid.fixed[v]) {
+      EXPECT_EQ(wide[v], grid.positions[v]);
+    }
+}
+
 // A vertex pulled out of a notched ring of fixed neighbours: toward their
 // centroid, toward each of them and on the input vertices nearest the
 // centroid its triangles stay folded (the notch at (0.54, 0.40) hides the
