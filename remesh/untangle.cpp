@@ -440,12 +440,21 @@ UntangleReport untangle(const UntangleInput& input, const std::vector<Triangles>
       centroid /= static_cast<double>(ring.size());
       const Eigen::Vector3d was = x[vi], side_was = side[vi];
       std::vector<Eigen::Vector3d> candidates;
+      // Input vertices, each tried once: the searches around v and around its
+      // centroid overlap, and a repeat could not win (Choice::offer takes
+      // only a better one).
+      std::vector<uint32_t> inputs;
+      auto add_input = [&](uint32_t i) {
+        if (std::find(inputs.begin(), inputs.end(), i) != inputs.end()) return;
+        inputs.push_back(i);
+        candidates.push_back(sides.positions[i]);
+      };
       if (hops(v)) {
         const std::vector<uint32_t> here = side_at.nearest(was, 1);
         if (here.empty()) continue;
         for (const Eigen::Vector3d& around : {was, centroid})
           for (uint32_t i : side_at.nearest(around, options.input_vertex_hops))
-            if (component[i] == component[here[0]]) candidates.push_back(sides.positions[i]);
+            if (component[i] == component[here[0]]) add_input(i);
       } else {
         auto add_pressed = [&](const Eigen::Vector3d& q) {
           Eigen::Vector3d pressed;
@@ -456,10 +465,10 @@ UntangleReport untangle(const UntangleInput& input, const std::vector<Triangles>
           candidates.push_back(q);
           add_pressed(q);
         }
-        for (uint32_t i : side_at.nearest(centroid, options.input_candidates)) candidates.push_back(sides.positions[i]);
+        for (uint32_t i : side_at.nearest(centroid, options.input_candidates)) add_input(i);
         if (options.wide_candidates > 0)
           for (const Eigen::Vector3d& around : {was, centroid})
-            for (uint32_t i : side_at.nearest(around, options.wide_candidates)) candidates.push_back(sides.positions[i]);
+            for (uint32_t i : side_at.nearest(around, options.wide_candidates)) add_input(i);
         for (int32_t u : ring)
           for (double w : {0.5, 0.8}) candidates.push_back(was + w * (x[static_cast<size_t>(u)] - was));
         // And, if there is one within half the ring's mean edge, a point where
