@@ -9,7 +9,8 @@ input vertex nearest to it, so the two counts agree on triangles whose
 corners are all input vertices and can differ on the others. It also counts
 the triangles that face against the input triangle nearest their centroid.
 
-usage: /usr/bin/python3 tools/bench/fold_recount.py OVERSAMPLED.obj REMESH.obj
+usage: /usr/bin/python3 tools/bench/fold_recount.py OVERSAMPLED.obj REMESH.obj [MORE.obj ...]
+  (any triangle mesh: a decoded .srm, Draco's decoded mesh; each is recounted, with the share of its area folded)
   OVERSAMPLED.obj: the remesher's input, made by
     srcodec subdivide MESH -o OVERSAMPLED.obj --scheme butterfly --steps S
   with S the remesh's "oversample_steps" (--json). It is the remesher's own
@@ -43,16 +44,11 @@ def unit_vertex_normals(p, t):
     return unit_rows(n)
 
 
-def main():
-    if len(sys.argv) != 3:
-        sys.exit(__doc__)
-    pi, ti = load_obj(sys.argv[1])
-    po, to = load_obj(sys.argv[2])
-    normals = unit_vertex_normals(pi, ti)
-    tree = cKDTree(pi)
+def recount(pi, ti, normals, tree, po, to):
+    """The remesher's facing test on po/to, every corner judged by the input vertex nearest it: per triangle,
+    folded (bool), and whether every corner is an input vertex; also each triangle's area."""
     dist, nearest = tree.query(po)
     on_input = dist < 1e-12 * max(1.0, np.abs(pi).max())
-
     # The remesher's facing test: triangle normal against the summed corner
     # normals, over the squared edge lengths; folded at or below 1e-9.
     fn = face_normals(po, to)
@@ -61,18 +57,27 @@ def main():
     r = np.linalg.norm(reference, axis=1)
     facing = (fn * reference).sum(1) / np.where(r * scale > 0, r * scale, 1)
     facing[~(r * scale > 0)] = 0.0
-    folded = facing <= 1e-9
-    all_on = on_input[to].all(1)
+    return facing <= 1e-9, on_input[to].all(1), on_input, 0.5 * np.linalg.norm(fn, axis=1)
 
-    # Against the input triangle nearest the centroid.
-    _, nearest_input = nearest_triangle(po[to].mean(1), pi, ti)
-    against = (unit_rows(fn) * unit_rows(face_normals(pi, ti))[nearest_input]).sum(1) <= 0
 
-    print(f"{sys.argv[2]}: {len(to)} triangles, {int((~on_input).sum())} of {len(po)} vertices off the input")
-    print(f"folded by corner normals: {int(folded.sum())} "
-          f"({int((folded & all_on).sum())} with every corner an input vertex, {int((folded & ~all_on).sum())} with "
-          f"a corner off the input, judged by the input vertex nearest it)")
-    print(f"facing against the input triangle nearest the centroid: {int(against.sum())}")
+def main():
+    if len(sys.argv) < 3:
+        sys.exit(__doc__)
+    pi, ti = load_obj(sys.argv[1])
+    normals = unit_vertex_normals(pi, ti)
+    tree = cKDTree(pi)
+    for path in sys.argv[2:]:
+        po, to = load_obj(path)
+        folded, all_on, on_input, area = recount(pi, ti, normals, tree, po, to)
+        # Against the input triangle nearest the centroid.
+        _, nearest_input = nearest_triangle(po[to].mean(1), pi, ti)
+        against = (unit_rows(face_normals(po, to)) * unit_rows(face_normals(pi, ti))[nearest_input]).sum(1) <= 0
+        share = 100.0 * area[folded].sum() / max(area.sum(), 1e-300)
+        print(f"{path}: {len(to)} triangles, {int((~on_input).sum())} of {len(po)} vertices off the input")
+        print(f"folded by corner normals: {int(folded.sum())} "
+              f"({int((folded & all_on).sum())} with every corner an input vertex, {int((folded & ~all_on).sum())} with "
+              f"a corner off the input, judged by the input vertex nearest it), {share:.3f}% of the area")
+        print(f"facing against the input triangle nearest the centroid: {int(against.sum())}")
 
 
 if __name__ == "__main__":

@@ -1,0 +1,90 @@
+#!/usr/bin/python3
+"""Folded triangles in decoded meshes: srcodec's remesh, its decoded .srm files and Draco's, side by side.
+
+A remesh with no folded triangle can decode to a mesh with many: the coded
+coefficients move every vertex a little, and a triangle nearly edge-on to the
+input turns over. For MESH.obj this script writes, in a scratch folder:
+  - the remesh `srcodec encode` codes (`srcodec remesh --keep-tangled-splits`,
+    or without that option with --unsplit-tangles),
+  - `srcodec encode` at its default rate and at the whole stream, decoded,
+  - Draco's decoded mesh at the quantization whose PSNR is nearest the default
+    rate's and at one bit more,
+and recounts each as tools/bench/fold_recount.py does (every corner judged by
+the normal of the input vertex nearest it, over the input oversampled as the
+remesher oversampled it): folded triangles and their share of the area.
+
+usage: /usr/bin/python3 tools/bench/decoded_folds.py MESH.obj [--unsplit-tangles]
+"""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+from fold_recount import recount, unit_vertex_normals
+from mesh_arrays import load_obj
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+SRCODEC = os.environ.get("SRCODEC", os.path.join(ROOT, "build", "tools", "srcodec"))
+
+
+def run(args):
+    p = subprocess.run([SRCODEC] + args, capture_output=True, text=True)
+    if p.returncode != 0:
+        sys.exit(f"srcodec {' '.join(args)}: {(p.stderr.strip().splitlines() or ['exit ' + str(p.returncode)])[-1]}")
+    return p.stdout
+
+
+def psnr(mesh, other):
+    return json.loads(run(["compare", mesh, other, "--json"]))["psnr"]
+
+
+def main():
+    args = [a for a in sys.argv[1:] if a != "--unsplit-tangles"]
+    unsplit = len(args) + 1 == len(sys.argv[1:])
+    if len(args) != 1 or not args[0].endswith(".obj"):
+        sys.exit(__doc__)
+    mesh = args[0]
+    with tempfile.TemporaryDirectory() as tmp:
+        at = lambda name: os.path.join(tmp, name)
+        rows = []  # (what, bytes, psnr, path)
+        remesh = json.loads(run(["remesh", mesh, "-o", at("remesh.obj"), "--json", "-q"] +
+                                ([] if unsplit else ["--keep-tangled-splits"])))
+        rows.append(("remesh (what encode codes)", "", remesh["levels"][-1]["psnr"], at("remesh.obj")))
+        run(["subdivide", mesh, "-o", at("over.obj"), "--scheme", "butterfly",
+             "--steps", str(remesh["oversample_steps"])])
+        extra = ["--unsplit-tangles"] if unsplit else []
+        target = None
+        for what, rate in (("srcodec, default rate", []), ("srcodec, whole stream", ["--bytes", "1000000000"])):
+            srm = at("coded.srm")
+            coded = json.loads(run(["encode", mesh, "-o", srm, "--json", "-q"] + rate + extra))
+            run(["decode", srm, "-o", at(what + ".obj")])
+            rows.append((what, coded["bytes"], coded["psnr"], at(what + ".obj")))
+            target = coded["psnr"] if target is None else target
+        draco = []
+        for qp in range(6, 21):
+            out = at(f"draco{qp}.obj")
+            d = json.loads(run(["draco", mesh, "--qp", str(qp), "--decoded", out, "--json"]))
+            draco.append((qp, d["bytes"], psnr(mesh, out), out))
+        nearest = min(range(len(draco)), key=lambda i: abs(draco[i][2] - target))
+        for qp, size, q, out in draco[nearest:nearest + 2]:
+            rows.append((f"Draco qp {qp}", size, q, out))
+
+        pi, ti = load_obj(at("over.obj"))
+        normals, tree = unit_vertex_normals(pi, ti), cKDTree(pi)
+        print(f"{os.path.basename(mesh)}, oversampled {remesh['oversample_steps']} time(s) for the recount"
+              + (", encode with --unsplit-tangles" if unsplit else ""))
+        print("| mesh | bytes | PSNR dB | triangles | folded | folded area |")
+        print("|---|---:|---:|---:|---:|---:|")
+        for what, size, q, path in rows:
+            po, to = load_obj(path)
+            folded, _, _, area = recount(pi, ti, normals, tree, po, to)
+            share = 100.0 * area[folded].sum() / max(area.sum(), 1e-300)
+            print(f"| {what} | {size} | {q:.2f} | {len(to)} | {int(folded.sum())} | {share:.3f}% |", flush=True)
+
+
+if __name__ == "__main__":
+    main()
