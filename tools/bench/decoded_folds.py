@@ -3,7 +3,7 @@
 
 A remesh with no folded triangle can decode to a mesh with many: the coded
 coefficients move every vertex a little, and a triangle nearly edge-on to the
-input turns over. For MESH.obj this script writes, in a scratch folder:
+input turns over. For MESH this script writes, in a scratch folder:
   - the remesh `srcodec encode` codes (`srcodec remesh --keep-tangled-splits`,
     or without that option with --unsplit-tangles),
   - `srcodec encode` at its default rate and at the whole stream, decoded,
@@ -13,7 +13,8 @@ and recounts each as tools/bench/fold_recount.py does (every corner judged by
 the normal of the input vertex nearest it, over the input oversampled as the
 remesher oversampled it): folded triangles and their share of the area.
 
-usage: /usr/bin/python3 tools/bench/decoded_folds.py MESH.obj [--unsplit-tangles]
+usage: /usr/bin/python3 tools/bench/decoded_folds.py MESH [--unsplit-tangles]
+  MESH: any mesh srcodec reads (OBJ, PLY, OFF, STL)
 """
 import json
 import os
@@ -45,7 +46,7 @@ def psnr(mesh, other):
 def main():
     args = [a for a in sys.argv[1:] if a != "--unsplit-tangles"]
     unsplit = len(args) + 1 == len(sys.argv[1:])
-    if len(args) != 1 or not args[0].endswith(".obj"):
+    if len(args) != 1:
         sys.exit(__doc__)
     mesh = args[0]
     with tempfile.TemporaryDirectory() as tmp:
@@ -61,8 +62,9 @@ def main():
         for what, rate in (("srcodec, default rate", []), ("srcodec, whole stream", ["--bytes", "1000000000"])):
             srm = at("coded.srm")
             coded = json.loads(run(["encode", mesh, "-o", srm, "--json", "-q"] + rate + extra))
-            run(["decode", srm, "-o", at(what + ".obj")])
-            rows.append((what, coded["bytes"], coded["psnr"], at(what + ".obj")))
+            decoded = at(what.replace(", ", "_").replace(" ", "_") + ".obj")
+            run(["decode", srm, "-o", decoded])
+            rows.append((what, coded["bytes"], coded["psnr"], decoded))
             target = coded["psnr"] if target is None else target
         draco = []
         for qp in range(6, 21):
@@ -81,7 +83,7 @@ def main():
         print("|---|---:|---:|---:|---:|---:|")
         for what, size, q, path in rows:
             po, to = load_obj(path)
-            folded, _, _, area = recount(pi, ti, normals, tree, po, to)
+            folded, _, _, area = recount(pi, normals, tree, po, to)
             share = 100.0 * area[folded].sum() / max(area.sum(), 1e-300)
             print(f"| {what} | {size} | {q:.2f} | {len(to)} | {int(folded.sum())} | {share:.3f}% |", flush=True)
 

@@ -44,9 +44,11 @@ def unit_vertex_normals(p, t):
     return unit_rows(n)
 
 
-def recount(pi, ti, normals, tree, po, to):
-    """The remesher's facing test on po/to, every corner judged by the input vertex nearest it: per triangle,
-    folded (bool), and whether every corner is an input vertex; also each triangle's area."""
+def recount(pi, normals, tree, po, to):
+    """The remesher's facing test on mesh po/to against input positions pi (their unit vertex normals, a
+    cKDTree over pi), every corner judged by the input vertex nearest it. Returns per triangle whether it is
+    folded and whether every corner is an input vertex, per vertex of po whether it is one, and per triangle
+    its area."""
     dist, nearest = tree.query(po)
     on_input = dist < 1e-12 * max(1.0, np.abs(pi).max())
     # The remesher's facing test: triangle normal against the summed corner
@@ -68,15 +70,16 @@ def main():
     tree = cKDTree(pi)
     for path in sys.argv[2:]:
         po, to = load_obj(path)
-        folded, all_on, on_input, area = recount(pi, ti, normals, tree, po, to)
+        folded, all_on, on_input, area = recount(pi, normals, tree, po, to)
         # Against the input triangle nearest the centroid.
         _, nearest_input = nearest_triangle(po[to].mean(1), pi, ti)
         against = (unit_rows(face_normals(po, to)) * unit_rows(face_normals(pi, ti))[nearest_input]).sum(1) <= 0
         share = 100.0 * area[folded].sum() / max(area.sum(), 1e-300)
         print(f"{path}: {len(to)} triangles, {int((~on_input).sum())} of {len(po)} vertices off the input")
         print(f"folded by corner normals: {int(folded.sum())} "
-              f"({int((folded & all_on).sum())} with every corner an input vertex, {int((folded & ~all_on).sum())} with "
-              f"a corner off the input, judged by the input vertex nearest it), {share:.3f}% of the area")
+              f"({int((folded & all_on).sum())} with every corner an input vertex, "
+              f"{int((folded & ~all_on).sum())} with a corner off the input, judged by the input vertex nearest it), "
+              f"{share:.3f}% of the area")
         print(f"facing against the input triangle nearest the centroid: {int(against.sum())}")
 
 
