@@ -62,6 +62,11 @@ def recount(pi, normals, tree, po, to):
     return facing <= 1e-9, on_input[to].all(1), on_input, 0.5 * np.linalg.norm(fn, axis=1)
 
 
+def area_percent(mask, area):
+    """The share of the area (per triangle) that the triangles in mask cover, in percent."""
+    return 100.0 * area[mask].sum() / max(area.sum(), 1e-300)
+
+
 def main():
     if len(sys.argv) < 3:
         sys.exit(__doc__)
@@ -74,7 +79,7 @@ def main():
         # Against the input triangle nearest the centroid.
         _, nearest_input = nearest_triangle(po[to].mean(1), pi, ti)
         against = (unit_rows(face_normals(po, to)) * unit_rows(face_normals(pi, ti))[nearest_input]).sum(1) <= 0
-        share = 100.0 * area[folded].sum() / max(area.sum(), 1e-300)
+        share = area_percent(folded, area)
         print(f"{path}: {len(to)} triangles, {int((~on_input).sum())} of {len(po)} vertices off the input")
         print(f"folded by corner normals: {int(folded.sum())} "
               f"({int((folded & all_on).sum())} with every corner an input vertex, "
