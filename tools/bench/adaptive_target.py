@@ -11,16 +11,13 @@ the uniform one with at most 60% of its triangles. Prints a Markdown table.
 usage: /usr/bin/python3 tools/bench/adaptive_target.py [MESH ...]
        ADAPTIVE="--max-loss 0.7 --deepen 0.06" SEEDS=1 /usr/bin/python3 tools/bench/adaptive_target.py stanford-bunny.obj
 """
-import json
 import os
 import shlex
-import subprocess
 import sys
 import tempfile
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-SRCODEC = os.environ.get("SRCODEC", os.path.join(ROOT, "build", "tools", "srcodec"))
-CORPUS = os.path.join(ROOT, "..", "shared", "data", "meshes")
+from srcodec_cli import CORPUS, or_exit, run_json
+
 SAMPLES = int(os.environ.get("SAMPLES", "1000000"))
 SEEDS = int(os.environ.get("SEEDS", "3"))
 # The options the README quotes per mesh (twenty-first and twenty-second
@@ -34,17 +31,10 @@ OPTIONS = {
 MAX_LOSS_DB, MAX_SHARE = 0.5, 0.60
 
 
-def srcodec(args):
-    p = subprocess.run([SRCODEC] + args, capture_output=True, text=True)
-    if p.returncode != 0:
-        sys.exit(f"adaptive_target.py: srcodec {' '.join(args)}: {p.stderr.strip()}")
-    return json.loads(p.stdout)
-
-
 def measure(mesh, extra, out):
     """Remeshes to `out`; returns (finest triangles, mean PSNR over the seeds, remesh seconds)."""
-    d = srcodec(["remesh", mesh, "-o", out, "--levels", "5", "--json", "--quiet"] + extra)
-    psnr = [srcodec(["compare", mesh, out, "--samples", str(SAMPLES), "--seed", str(s), "--json"])["psnr"]
+    d = run_json(["remesh", mesh, "-o", out, "--levels", "5", "--json", "--quiet"] + extra)
+    psnr = [run_json(["compare", mesh, out, "--samples", str(SAMPLES), "--seed", str(s), "--json"])["psnr"]
             for s in range(1, SEEDS + 1)]
     return d["levels"][-1]["triangles"], sum(psnr) / len(psnr), d["seconds"]
 
@@ -67,4 +57,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    or_exit(main)

@@ -13,23 +13,13 @@ corner judged by the input vertex nearest it) and PSNR.
 usage: /usr/bin/python3 tools/bench/corpus_remesh.py [MESH ...]
        REMESH="--levels 5" /usr/bin/python3 tools/bench/corpus_remesh.py armadillo.obj
 """
-import json
 import os
 import shlex
-import subprocess
 import sys
 import tempfile
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-SRCODEC = os.environ.get("SRCODEC", os.path.join(ROOT, "build", "tools", "srcodec"))
-CORPUS = os.path.join(ROOT, "..", "shared", "data", "meshes")
+from srcodec_cli import CORPUS, Failed, run_json
 
-
-def srcodec(args):
-    p = subprocess.run([SRCODEC] + args, capture_output=True, text=True)
-    if p.returncode != 0:
-        return None, (p.stderr.strip().splitlines() or ["exit " + str(p.returncode)])[-1]
-    return json.loads(p.stdout), None
 
 
 def shape(info):
@@ -46,11 +36,11 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         for name in meshes:
             mesh, out = os.path.join(CORPUS, name), os.path.join(tmp, "out.ply")
-            d, err = srcodec(["remesh", mesh, "-o", out, "--json", "--quiet"] + extra)
-            src, err = (None, err) if d is None else srcodec(["info", mesh, "--json"])
-            got, err = (None, err) if src is None else srcodec(["info", out, "--json"])
-            if got is None:
-                print(f"| {name} | error: {err} ||||||||||", flush=True)
+            try:
+                d = run_json(["remesh", mesh, "-o", out, "--json", "--quiet"] + extra)
+                src, got = run_json(["info", mesh, "--json"]), run_json(["info", out, "--json"])
+            except Failed as e:
+                print(f"| {name} | error: {e} ||||||||||", flush=True)
                 continue
             a, b = shape(src["cleaned"]), shape(got)
             same = "yes" if a == b else "no"

@@ -16,9 +16,7 @@ remesher oversampled it): folded triangles and their share of the area.
 usage: /usr/bin/python3 tools/bench/decoded_folds.py MESH [--unsplit-tangles]
   MESH: any mesh srcodec reads (OBJ, PLY, OFF, STL)
 """
-import json
 import os
-import subprocess
 import sys
 import tempfile
 
@@ -27,20 +25,11 @@ from scipy.spatial import cKDTree
 
 from fold_recount import area_percent, recount, unit_vertex_normals
 from mesh_arrays import load_obj
-
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-SRCODEC = os.environ.get("SRCODEC", os.path.join(ROOT, "build", "tools", "srcodec"))
-
-
-def run(args):
-    p = subprocess.run([SRCODEC] + args, capture_output=True, text=True)
-    if p.returncode != 0:
-        sys.exit(f"srcodec {' '.join(args)}: {(p.stderr.strip().splitlines() or ['exit ' + str(p.returncode)])[-1]}")
-    return p.stdout
+from srcodec_cli import or_exit, run, run_json
 
 
 def psnr(mesh, other):
-    return json.loads(run(["compare", mesh, other, "--json"]))["psnr"]
+    return run_json(["compare", mesh, other, "--json"])["psnr"]
 
 
 def main():
@@ -52,8 +41,8 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         at = lambda name: os.path.join(tmp, name)
         rows = []  # (what, bytes, psnr, path)
-        remesh = json.loads(run(["remesh", mesh, "-o", at("remesh.obj"), "--json", "-q"] +
-                                ([] if unsplit else ["--keep-tangled-splits"])))
+        remesh = run_json(["remesh", mesh, "-o", at("remesh.obj"), "--json", "-q"] +
+                          ([] if unsplit else ["--keep-tangled-splits"]))
         rows.append(("remesh (what encode codes)", "", remesh["levels"][-1]["psnr"], at("remesh.obj")))
         run(["subdivide", mesh, "-o", at("over.obj"), "--scheme", "butterfly",
              "--steps", str(remesh["oversample_steps"])])
@@ -61,7 +50,7 @@ def main():
         target = None
         for what, rate in (("srcodec, default rate", []), ("srcodec, whole stream", ["--bytes", "1000000000"])):
             srm = at("coded.srm")
-            coded = json.loads(run(["encode", mesh, "-o", srm, "--json", "-q"] + rate + extra))
+            coded = run_json(["encode", mesh, "-o", srm, "--json", "-q"] + rate + extra)
             decoded = at(what.replace(", ", "_").replace(" ", "_") + ".obj")
             run(["decode", srm, "-o", decoded])
             rows.append((what, coded["bytes"], coded["psnr"], decoded))
@@ -69,7 +58,7 @@ def main():
         draco = []
         for qp in range(6, 31):  # Draco's PSNR grows with qp: two past the target decide both rows
             out = at(f"draco{qp}.obj")
-            d = json.loads(run(["draco", mesh, "--qp", str(qp), "--decoded", out, "--json"]))
+            d = run_json(["draco", mesh, "--qp", str(qp), "--decoded", out, "--json"])
             draco.append((qp, d["bytes"], psnr(mesh, out), out))
             if len(draco) >= 2 and min(draco[-1][2], draco[-2][2]) > target:
                 break
@@ -91,4 +80,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    or_exit(main)

@@ -18,9 +18,7 @@ import subprocess
 import sys
 import tempfile
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-SRCODEC = os.environ.get("SRCODEC", os.path.join(ROOT, "build", "tools", "srcodec"))
-CORPUS = os.path.join(ROOT, "..", "shared", "data", "meshes")
+from srcodec_cli import CORPUS, SRCODEC, failure
 MESHES = ["stanford-bunny.obj", "armadillo.obj", "nefertiti.obj", "igea.ply"]
 
 def int_list(name, default):
@@ -37,14 +35,16 @@ MAX_LOSSES = [x.strip() for x in os.environ.get("MAX_LOSSES", "0.5").split(",") 
 
 def run(mesh, extra):
     with tempfile.TemporaryDirectory() as tmp:
-        cmd = ["/usr/bin/time", "-v", SRCODEC, "remesh", os.path.join(CORPUS, mesh), "-o",
-               os.path.join(tmp, "out.ply"), "--json", "--quiet"] + extra
-        print(" ".join(cmd[2:]), file=sys.stderr, flush=True)
-        p = subprocess.run(cmd, capture_output=True, text=True)
+        args = ["remesh", os.path.join(CORPUS, mesh), "-o", os.path.join(tmp, "out.ply"), "--json", "--quiet"] + extra
+        timing = os.path.join(tmp, "time.txt")  # kept apart from srcodec's stderr, whose last line says what failed
+        print(" ".join([SRCODEC] + args), file=sys.stderr, flush=True)
+        p = subprocess.run(["/usr/bin/time", "-v", "-o", timing, SRCODEC] + args, capture_output=True, text=True)
         if p.returncode != 0:
-            return None, p.stderr.strip().splitlines()[-1]
-        rss = int(re.search(r"Maximum resident set size \(kbytes\): (\d+)", p.stderr).group(1))
-        wall = re.search(r"Elapsed \(wall clock\) time \(h:mm:ss or m:ss\): ([\d:.]+)", p.stderr).group(1)
+            return None, str(failure(args, p.returncode, p.stderr))
+        with open(timing) as f:
+            times = f.read()
+        rss = int(re.search(r"Maximum resident set size \(kbytes\): (\d+)", times).group(1))
+        wall = re.search(r"Elapsed \(wall clock\) time \(h:mm:ss or m:ss\): ([\d:.]+)", times).group(1)
         secs = sum(float(x) * 60 ** i for i, x in enumerate(reversed(wall.split(":"))))
         d = json.loads(p.stdout)
         d["wall"] = secs

@@ -1,0 +1,44 @@
+"""Running the srcodec binary from the benchmark scripts in this folder (adaptive_target.py,
+corpus_remesh.py, decoded_folds.py, remesh_quality.py): where the binary and the corpus are, and
+one call that runs a command and says what failed.
+
+SRCODEC in the environment names another binary (default: build/tools/srcodec of this checkout)."""
+import json
+import os
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+SRCODEC = os.environ.get("SRCODEC", os.path.join(ROOT, "build", "tools", "srcodec"))
+CORPUS = os.path.join(ROOT, "..", "shared", "data", "meshes")
+
+
+class Failed(RuntimeError):
+    """A srcodec command that exited non-zero; its text is the command and the last line srcodec printed."""
+
+
+def failure(args, returncode, stderr):
+    """The Failed of `srcodec ARGS` that exited with `returncode`, having printed `stderr`."""
+    last = (stderr.strip().splitlines() or [f"exit {returncode}"])[-1]
+    return Failed(f"srcodec {' '.join(args)}: {last}")
+
+
+def run(args):
+    """Runs `srcodec ARGS`; returns what it printed on stdout. Raises Failed when it exits non-zero."""
+    p = subprocess.run([SRCODEC] + args, capture_output=True, text=True)
+    if p.returncode != 0:
+        raise failure(args, p.returncode, p.stderr)
+    return p.stdout
+
+
+def run_json(args):
+    """run() of a command given --json: its output read as JSON."""
+    return json.loads(run(args))
+
+
+def or_exit(call, *args):
+    """call(*args), or the script's exit with Failed's text (and status 1) when a command failed."""
+    try:
+        return call(*args)
+    except Failed as e:
+        sys.exit(f"{os.path.basename(sys.argv[0])}: {e}")
