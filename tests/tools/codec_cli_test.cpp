@@ -51,6 +51,21 @@ TEST(CodecCli, EncodeAtAByteBudgetThenDecodeEveryLevelAndPrefix) {
   EXPECT_FALSE(read_file_bytes(dir.file("h.obj")).ok());
 }
 
+// With no rate option, encode keeps the knee of the rate-distortion curve
+// (tools/measure/rate_control.h) and says so.
+TEST(CodecCli, EncodeWithNoRateKeepsTheKnee) {
+  test::ScratchDir dir;
+  const std::string srm = dir.file("spot.srm");
+  auto e = run_srcodec("encode --json --levels 2 " + q(test::source_path("data/spot.obj")) + " -o " + q(srm));
+  ASSERT_EQ(e.exit_code, 0) << e.err;
+  EXPECT_NE(e.out.find("\"rate\": \"the knee at 1 dB/bpv\""), std::string::npos) << e.out;
+  EXPECT_NE(e.err.find("no rate option given"), std::string::npos) << e.err;
+  EXPECT_NE(e.err.find(" cuts measured: keeping "), std::string::npos) << e.err;
+  EXPECT_LT(json_number(e.out, "bytes"), json_number(e.out, "full_stream_bytes"));
+  EXPECT_GT(json_number(e.out, "bytes"), json_number(e.out, "minimum_bytes"));
+  EXPECT_EQ(static_cast<double>(read_file_bytes(srm)->size()), json_number(e.out, "bytes"));
+}
+
 TEST(CodecCli, BadRequestsSayWhatAndKeepWhatWasThere) {
   test::ScratchDir dir;
   const std::string in = q(test::source_path("data/spot.obj"));

@@ -3,9 +3,9 @@
 //  - srcodec encode without the remeshing: encode_srm, median of runs;
 //  - srcodec decode to the finest level: parse + decode_srm of the whole
 //    stream, of a file holding a tenth of its coefficient bytes and of the
-//    file `srcodec encode` writes with no rate option (1 dB below the whole
-//    stream's PSNR, tools/srcodec/cmd_encode.cpp), median of runs, in output
-//    triangles per second;
+//    file `srcodec encode` writes with no rate option (the knee of the
+//    stream's rate-distortion curve, tools/measure/rate_control.h), median of
+//    runs, in output triangles per second;
 //  - Draco decode of the input mesh (cl 10, qp 11 and 14), median of runs, in
 //    output triangles per second;
 //  - srcodec decode at equal quality to each Draco setting: Draco's decoded
@@ -139,16 +139,15 @@ int run(const std::string& path, int levels, int runs, const std::string& cache_
   uint64_t segment_bytes = 0;
   for (const SrmChunk& c : whole.segments) segment_bytes += c.declared;
   const std::vector<uint8_t> tenth = truncate_srm(encoded.bytes, segment_bytes / 10).value();
-  // The file `srcodec encode` writes with no rate option: 1 dB below the
-  // whole stream's PSNR (cached with the stream).
-  const std::string default_cached = cache_dir.empty() ? "" : cache_path(cache_dir, path, levels, ".default");
+  // The file `srcodec encode` writes with no rate option: the knee of the
+  // stream's rate-distortion curve (cached with the stream; ".default" held
+  // the earlier default, 1 dB below the whole stream).
+  const std::string default_cached = cache_dir.empty() ? "" : cache_path(cache_dir, path, levels, ".knee");
   std::vector<uint8_t> default_file = default_cached.empty() ? std::vector<uint8_t>{} : read_bytes(default_cached);
   if (default_file.empty()) {
     const StreamCutter cutter(input.value(), encoded.bytes);
-    StatusOr<double> best = whole_stream_psnr(cutter);
-    StatusOr<uint64_t> kept =
-        best.ok() ? segment_bytes_for_psnr(cutter, best.value() - kDefaultDbBelowWholeStream) : best.status();
-    StatusOr<std::vector<uint8_t>> cut = kept.ok() ? cutter.cut(kept.value()) : kept.status();
+    StatusOr<Knee> knee = knee_of_stream(cutter, input.value().positions.size());
+    StatusOr<std::vector<uint8_t>> cut = knee.ok() ? cutter.cut(knee.value().segment_bytes) : knee.status();
     if (!cut.ok()) {
       std::fprintf(stderr, "%s\n", cut.status().message().c_str());
       return 1;

@@ -1,6 +1,7 @@
 #include "tools/measure/rate_control.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "codec/srm_codec.h"
 #include "format/srm_file.h"
@@ -56,6 +57,47 @@ StatusOr<uint64_t> segment_bytes_for_psnr(const StreamCutter& cutter, double tar
     (p >= target ? hi : lo) = mid;
   }
   return hi;
+}
+
+StatusOr<Knee> knee_of_stream(const StreamCutter& cutter, size_t input_vertices) {
+  if (input_vertices == 0) return invalid_argument("rate control: the input has no vertices");
+  const double bits_per_byte_vertex = 8.0 / static_cast<double>(input_vertices);
+  std::vector<Knee> cuts(1);  // every cut measured, each file kKneeCutRatio times the last
+  SRCODEC_ASSIGN_OR_RETURN(std::vector<uint8_t> smallest, cutter.cut(0));
+  cuts[0].file_bytes = smallest.size();
+  SRCODEC_ASSIGN_OR_RETURN(cuts[0].psnr, cutter.psnr(0, kRateControlSamples));
+  // The next cut, unless the last one measured is the whole stream.
+  const auto measure_next = [&]() -> Status {
+    const Knee& last = cuts.back();
+    const auto budget = static_cast<uint64_t>(std::ceil(static_cast<double>(last.file_bytes) * kKneeCutRatio));
+    SRCODEC_ASSIGN_OR_RETURN(uint64_t segment_bytes, cutter.segment_bytes_within(budget));
+    Knee next;
+    next.segment_bytes = std::max(segment_bytes, last.segment_bytes + 1);
+    SRCODEC_ASSIGN_OR_RETURN(std::vector<uint8_t> file, cutter.cut(next.segment_bytes));
+    next.file_bytes = file.size();
+    SRCODEC_ASSIGN_OR_RETURN(next.psnr, cutter.psnr(next.segment_bytes, kRateControlSamples));
+    cuts.push_back(next);
+    return ok_status();
+  };
+  // Each cut judged by the two steps after it (a file about 1.56 times as
+  // large): the PSNR of an embedded stream climbs in stairs, as bit planes
+  // and levels begin, and one step alone can fall on a flat stair.
+  for (size_t k = 0;; ++k) {
+    while (cuts.size() < k + 3 && cuts.back().segment_bytes < cutter.segment_bytes())
+      SRCODEC_RETURN_IF_ERROR(measure_next());
+    const size_t ahead = std::min(k + 2, cuts.size() - 1);
+    Knee at = cuts[k];
+    at.cuts = static_cast<int>(cuts.size());
+    if (ahead == k) {  // the whole stream: no knee before it
+      at.whole_stream = true;
+      return at;
+    }
+    const double bpv_gained = bits_per_byte_vertex * (static_cast<double>(cuts[ahead].file_bytes) -
+                                                      static_cast<double>(at.file_bytes));
+    // An exact reproduction (infinite PSNR) gains more than any slope; a cut
+    // already exact gains nothing more.
+    if (!(cuts[ahead].psnr - at.psnr >= kKneeDbPerBpv * bpv_gained)) return at;
+  }
 }
 
 }  // namespace srcodec

@@ -59,7 +59,6 @@ Status run_encode(const EncodeCliOptions& o) {
 
   uint64_t segment_bytes = cutter.segment_bytes();
   std::string rate;
-  double target = -1.0;
   if (o.bytes > 0 || o.bpv > 0) {
     const uint64_t budget =
         o.bytes > 0 ? o.bytes : static_cast<uint64_t>(std::floor(o.bpv * input.positions.size() / 8.0));
@@ -69,29 +68,32 @@ Status run_encode(const EncodeCliOptions& o) {
                               std::to_string(minimum) + " that the header, base mesh and refinement flags take "
                               "(try fewer --base-vertices or --levels)");
     SRCODEC_ASSIGN_OR_RETURN(segment_bytes, cutter.segment_bytes_within(budget));
-  } else {
+  } else if (o.psnr > 0) {
+    const double target = o.psnr;
     SRCODEC_ASSIGN_OR_RETURN(double best, whole_stream_psnr(cutter));
-    target = o.psnr;
-    if (target < 0 && !std::isfinite(best)) {
-      // No error at all (a tiny mesh that is its own base mesh): nothing to trade.
-      say("no rate option given: the whole stream reproduces the input exactly, so all of it is kept");
-      rate = "the whole stream";
-    } else {
-      if (target < 0) {
-        target = best - kDefaultDbBelowWholeStream;
-        char below[32];
-        std::snprintf(below, sizeof below, "%g", kDefaultDbBelowWholeStream);
-        say("no rate option given: aiming at " + std::to_string(target) + " dB, " + below +
-            " dB below the whole stream (use --bpv, --bytes or --psnr to choose)");
-      }
-      rate = "--psnr " + std::to_string(target);
-      if (best < target)
-        return invalid_argument("--psnr " + std::to_string(target) + " is out of reach: the whole stream gives " +
-                                std::to_string(best) + " dB, limited by the remesh (try more --levels or " +
-                                "--base-vertices)");
-      say("searching for the shortest stream that reaches " + std::to_string(target) + " dB");
-      SRCODEC_ASSIGN_OR_RETURN(segment_bytes, segment_bytes_for_psnr(cutter, target));
-    }
+    rate = "--psnr " + std::to_string(target);
+    if (best < target)
+      return invalid_argument("--psnr " + std::to_string(target) + " is out of reach: the whole stream gives " +
+                              std::to_string(best) + " dB, limited by the remesh (try more --levels or " +
+                              "--base-vertices)");
+    say("searching for the shortest stream that reaches " + std::to_string(target) + " dB");
+    SRCODEC_ASSIGN_OR_RETURN(segment_bytes, segment_bytes_for_psnr(cutter, target));
+  } else {
+    char per_bpv[32];
+    std::snprintf(per_bpv, sizeof per_bpv, "%g", kKneeDbPerBpv);
+    say(std::string("no rate option given: measuring cuts of the stream up to its knee, where one more bit per input "
+                    "vertex gains less than ") + per_bpv + " dB (use --bpv, --bytes or --psnr to choose)");
+    SRCODEC_ASSIGN_OR_RETURN(Knee knee, knee_of_stream(cutter, input.positions.size()));
+    segment_bytes = knee.segment_bytes;
+    rate = knee.whole_stream ? std::string("the whole stream (no knee before it)")
+                             : std::string("the knee at ") + per_bpv + " dB/bpv";
+    char line[160];
+    std::snprintf(line, sizeof line, "%d cut%s measured: keeping %llu of %llu bytes, %.2f dB%s", knee.cuts,
+                  knee.cuts == 1 ? "" : "s", static_cast<unsigned long long>(knee.file_bytes), static_cast<unsigned long long>(full), knee.psnr,
+                  !knee.whole_stream           ? ""
+                  : std::isfinite(knee.psnr) ? ", the whole stream"
+                                             : ": the whole stream reproduces the input exactly");
+    say(line);
   }
   SRCODEC_ASSIGN_OR_RETURN(std::vector<uint8_t> file, cutter.cut(segment_bytes));
   const uint64_t keep = file.size();

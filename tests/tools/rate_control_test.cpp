@@ -1,0 +1,83 @@
+// Rate control over an embedded .srm stream (tools/measure/rate_control.h):
+// the knee `srcodec encode` keeps with no rate option.
+#include "tools/measure/rate_control.h"
+
+#include <gtest/gtest.h>
+
+#include "codec/srm_codec.h"
+#include "format/mesh_io.h"
+#include "remesh/remesher.h"
+#include "tests/test_util.h"
+
+namespace srcodec {
+namespace {
+
+// The whole stream of `input` remeshed with `options`.
+std::vector<uint8_t> whole_stream(const TriangleMesh& input, const RemeshOptions& options) {
+  StatusOr<SemiRegularMesh> srm = remesh(input, options);
+  EXPECT_TRUE(srm.ok()) << srm.status().message();
+  if (!srm.ok()) return {};
+  StatusOr<EncodedSrm> encoded = encode_srm(srm.value(), input);
+  EXPECT_TRUE(encoded.ok()) << encoded.status().message();
+  return encoded.ok() ? encoded->bytes : std::vector<uint8_t>{};
+}
+
+// PSNR gained per bit per input vertex from file `a` to file `b`.
+double slope(const Knee& a, double b_psnr, uint64_t b_bytes, size_t vertices) {
+  return (b_psnr - a.psnr) / (8.0 * (static_cast<double>(b_bytes) - static_cast<double>(a.file_bytes)) / vertices);
+}
+
+TEST(RateControl, KneeKeepsTheSteepPartOfTheCurve) {
+  StatusOr<TriangleMesh> input = read_triangle_mesh(test::source_path("data/spot.obj"));
+  ASSERT_TRUE(input.ok()) << input.status().message();
+  RemeshOptions options;
+  options.levels = 3;
+  const std::vector<uint8_t> stream = whole_stream(input.value(), options);
+  ASSERT_FALSE(stream.empty());
+  const StreamCutter cutter(input.value(), stream);
+  const size_t n = input->positions.size();
+  StatusOr<Knee> knee = knee_of_stream(cutter, n);
+  ASSERT_TRUE(knee.ok()) << knee.status().message();
+  ASSERT_FALSE(knee->whole_stream);
+  ASSERT_GT(knee->segment_bytes, 0u);
+  EXPECT_GT(knee->cuts, 3);
+  EXPECT_EQ(cutter.cut(knee->segment_bytes)->size(), knee->file_bytes);
+  EXPECT_DOUBLE_EQ(cutter.psnr(knee->segment_bytes, kRateControlSamples).value(), knee->psnr);
+  // Measured apart from the ladder: from the smallest file to the knee the
+  // curve climbs faster than kKneeDbPerBpv, from the knee to the whole stream
+  // slower.
+  Knee smallest;
+  smallest.file_bytes = cutter.cut(0)->size();
+  smallest.psnr = cutter.psnr(0, kRateControlSamples).value();
+  EXPECT_GT(slope(smallest, knee->psnr, knee->file_bytes, n), kKneeDbPerBpv);
+  const double whole = whole_stream_psnr(cutter).value();
+  EXPECT_LT(slope(knee.value(), whole, stream.size(), n), kKneeDbPerBpv);
+  EXPECT_GT(whole, knee->psnr);
+  // Deterministic.
+  StatusOr<Knee> again = knee_of_stream(cutter, n);
+  ASSERT_TRUE(again.ok());
+  EXPECT_EQ(again->segment_bytes, knee->segment_bytes);
+}
+
+TEST(RateControl, KneeOfAStreamWithNoLevelsIsTheWholeStream) {
+  // An octahedron as its own base mesh: nothing to refine, nothing to trade.
+  TriangleMesh octahedron;
+  octahedron.positions = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  octahedron.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  RemeshOptions options;
+  options.levels = 0;
+  options.base_vertices = 6;
+  options.oversample = 0;
+  const std::vector<uint8_t> stream = whole_stream(octahedron, options);
+  ASSERT_FALSE(stream.empty());
+  const StreamCutter cutter(octahedron, stream);
+  StatusOr<Knee> knee = knee_of_stream(cutter, octahedron.positions.size());
+  ASSERT_TRUE(knee.ok()) << knee.status().message();
+  EXPECT_TRUE(knee->whole_stream);
+  EXPECT_EQ(knee->segment_bytes, cutter.segment_bytes());
+  EXPECT_EQ(knee->file_bytes, stream.size());
+  EXPECT_FALSE(knee_of_stream(cutter, 0).ok()) << "no input vertices: an error, not a division by zero";
+}
+
+}  // namespace
+}  // namespace srcodec
