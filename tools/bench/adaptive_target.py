@@ -41,8 +41,8 @@ def measure(mesh, extra, out):
 
 def main():
     meshes = sys.argv[1:] or list(OPTIONS)
-    print(f"| mesh | adaptive options | uniform triangles | uniform dB | adaptive triangles | share | adaptive dB "
-          f"| loss dB | target |")
+    print("| mesh | adaptive options | uniform triangles | uniform dB | adaptive triangles | share | adaptive dB "
+          "| loss dB | target |")
     print("|---|---|---|---|---|---|---|---|---|")
     with tempfile.TemporaryDirectory() as tmp:
         for name in meshes:

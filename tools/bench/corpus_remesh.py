@@ -21,7 +21,6 @@ import tempfile
 from srcodec_cli import CORPUS, Failed, run_json
 
 
-
 def shape(info):
     genus = info.get("genus")
     return info["components"], info["boundary_loops"], "-" if genus is None else genus

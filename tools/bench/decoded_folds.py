@@ -20,7 +20,6 @@ import os
 import sys
 import tempfile
 
-import numpy as np
 from scipy.spatial import cKDTree
 
 from fold_recount import area_percent, recount, unit_vertex_normals

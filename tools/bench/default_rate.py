@@ -20,7 +20,7 @@ import sys
 import tempfile
 import time
 
-from srcodec_cli import CORPUS, or_exit, run, run_json
+from srcodec_cli import CORPUS, or_exit, run_json
 
 MESH_SUFFIXES = (".obj", ".ply", ".off", ".stl")
 

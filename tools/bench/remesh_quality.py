@@ -19,6 +19,7 @@ import sys
 import tempfile
 
 from srcodec_cli import CORPUS, SRCODEC, failure
+
 MESHES = ["stanford-bunny.obj", "armadillo.obj", "nefertiti.obj", "igea.ply"]
 
 def int_list(name, default):
