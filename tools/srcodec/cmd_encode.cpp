@@ -88,11 +88,12 @@ Status run_encode(const EncodeCliOptions& o) {
     rate = knee.whole_stream ? std::string("the whole stream (no knee before it)")
                              : std::string("the knee at ") + per_bpv + " dB/bpv";
     char line[160];
+    const char* whole = !knee.whole_stream          ? ""
+                        : std::isfinite(knee.psnr) ? ", the whole stream"
+                                                   : ": the whole stream reproduces the input exactly";
     std::snprintf(line, sizeof line, "%d cut%s measured: keeping %llu of %llu bytes, %.2f dB%s", knee.cuts,
-                  knee.cuts == 1 ? "" : "s", static_cast<unsigned long long>(knee.file_bytes), static_cast<unsigned long long>(full), knee.psnr,
-                  !knee.whole_stream           ? ""
-                  : std::isfinite(knee.psnr) ? ", the whole stream"
-                                             : ": the whole stream reproduces the input exactly");
+                  knee.cuts == 1 ? "" : "s", static_cast<unsigned long long>(knee.file_bytes),
+                  static_cast<unsigned long long>(full), knee.psnr, whole);
     say(line);
   }
   SRCODEC_ASSIGN_OR_RETURN(std::vector<uint8_t> file, cutter.cut(segment_bytes));
@@ -132,7 +133,10 @@ Status run_encode(const EncodeCliOptions& o) {
 
 Command add_encode_command(CLI::App& app) {
   auto o = std::make_shared<EncodeCliOptions>();
-  CLI::App* cmd = app.add_subcommand("encode", "Remesh and compress a mesh into a progressive .srm file");
+  CLI::App* cmd = app.add_subcommand(
+      "encode",
+      "Remesh and compress a mesh into a progressive .srm file; with no rate option it keeps the knee of the "
+      "stream's rate-distortion curve (README: The default rate)");
   cmd->add_option("mesh", o->input, "Input mesh (OBJ, PLY, OFF, STL)")->required();
   cmd->add_option("-o,--output", o->output, "The .srm file to write")->required();
   add_remesh_flags(cmd, o->remesh, /*for_coding=*/true);
