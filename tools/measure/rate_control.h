@@ -39,11 +39,11 @@ inline constexpr size_t kRateControlSamples = 60000;
 // With no rate option, `srcodec encode` keeps the knee of the stream's
 // rate-distortion curve (knee_of_stream): past it, each further bit per
 // input vertex gains less than kKneeDbPerBpv dB. Draco gains about 6 dB for
-// 0.7 to 1.3 more bits per vertex near its curve's top (one more
-// quantization bit), and the curves cross beyond the knee: the old default, 1
-// dB below the whole stream, wrote 1.4 to 6.8 times Draco's bytes at the same
-// PSNR on 10 of the 13 corpus meshes, the knee 0.27 to 0.94 times on all 13
-// (README, "Encoding and decoding").
+// each 1 to 3 more bits per input vertex at 10 to 14 quantization bits, and
+// the curves cross beyond the knee: the old default, 1 dB below the whole
+// stream, wrote 1.4 to 6.8 times Draco's bytes at the same PSNR on 10 of the
+// 13 corpus meshes, the knee 0.27 to 0.94 times on all 13 (README, "Encoding
+// and decoding").
 inline constexpr double kKneeDbPerBpv = 1.0;
 // The cuts measured on the way: each file this much larger than the last.
 inline constexpr double kKneeCutRatio = 1.25;
