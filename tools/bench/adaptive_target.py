@@ -16,7 +16,7 @@ import shlex
 import sys
 import tempfile
 
-from srcodec_cli import CORPUS, or_exit, run_json
+from srcodec_cli import CORPUS, or_exit, psnr, run_json
 
 SAMPLES = int(os.environ.get("SAMPLES", "1000000"))
 SEEDS = int(os.environ.get("SEEDS", "3"))
@@ -34,9 +34,8 @@ MAX_LOSS_DB, MAX_SHARE = 0.5, 0.60
 def measure(mesh, extra, out):
     """Remeshes to `out`; returns (finest triangles, mean PSNR over the seeds, remesh seconds)."""
     d = run_json(["remesh", mesh, "-o", out, "--levels", "5", "--json", "--quiet"] + extra)
-    psnr = [run_json(["compare", mesh, out, "--samples", str(SAMPLES), "--seed", str(s), "--json"])["psnr"]
-            for s in range(1, SEEDS + 1)]
-    return d["levels"][-1]["triangles"], sum(psnr) / len(psnr), d["seconds"]
+    psnrs = [psnr(mesh, out, ["--samples", str(SAMPLES), "--seed", str(s)]) for s in range(1, SEEDS + 1)]
+    return d["levels"][-1]["triangles"], sum(psnrs) / len(psnrs), d["seconds"]
 
 
 def main():

@@ -18,7 +18,7 @@ import shlex
 import sys
 import tempfile
 
-from srcodec_cli import CORPUS, Failed, run_json
+from srcodec_cli import CORPUS, Failed, corpus_meshes, run_json
 
 
 def shape(info):
@@ -27,7 +27,7 @@ def shape(info):
 
 
 def main():
-    meshes = sys.argv[1:] or sorted(f for f in os.listdir(CORPUS) if f.endswith((".obj", ".ply", ".off", ".stl")))
+    meshes = sys.argv[1:] or corpus_meshes()
     extra = shlex.split(os.environ.get("REMESH", ""))
     print("| mesh | components in, out | boundary loops in, out | genus in, out | same | welded on reading "
           "| finest triangles | PSNR dB | folded | pleats | seconds |")

@@ -24,11 +24,7 @@ from scipy.spatial import cKDTree
 
 from fold_recount import area_percent, recount, unit_vertex_normals
 from mesh_arrays import load_obj
-from srcodec_cli import or_exit, run, run_json
-
-
-def psnr(mesh, other):
-    return run_json(["compare", mesh, other, "--json"])["psnr"]
+from srcodec_cli import draco_point, or_exit, run, run_json
 
 
 def main():
@@ -57,8 +53,7 @@ def main():
         draco = []
         for qp in range(6, 31):  # Draco's PSNR grows with qp: two past the target decide both rows
             out = at(f"draco{qp}.obj")
-            d = run_json(["draco", mesh, "--qp", str(qp), "--decoded", out, "--json"])
-            draco.append((qp, d["bytes"], psnr(mesh, out), out))
+            draco.append((qp, *draco_point(mesh, qp, out), out))
             if len(draco) >= 2 and min(draco[-1][2], draco[-2][2]) > target:
                 break
         nearest = min(range(len(draco)), key=lambda i: abs(draco[i][2] - target))

@@ -20,18 +20,15 @@ import sys
 import tempfile
 import time
 
-from srcodec_cli import CORPUS, or_exit, run_json
-
-MESH_SUFFIXES = (".obj", ".ply", ".off", ".stl")
+from srcodec_cli import CORPUS, corpus_meshes, draco_point, or_exit, run_json
 
 
 def draco_curve(mesh, tmp):
     """(PSNR, bytes) of Draco at quantization bits 6..16, in increasing PSNR."""
     curve = []
     for qp in range(6, 17):
-        out = os.path.join(tmp, f"draco{qp}.ply")
-        size = run_json(["draco", mesh, "--qp", str(qp), "--decoded", out, "--json"])["bytes"]
-        curve.append((run_json(["compare", mesh, out, "--json"])["psnr"], size))
+        size, q = draco_point(mesh, qp, os.path.join(tmp, f"draco{qp}.ply"))
+        curve.append((q, size))
     return sorted(curve)
 
 
@@ -61,7 +58,7 @@ def row(name, what, coded, curve):
 
 
 def main():
-    meshes = sys.argv[1:] or sorted(f for f in os.listdir(CORPUS) if f.endswith(MESH_SUFFIXES))
+    meshes = sys.argv[1:] or corpus_meshes()
     old = os.environ.get("OLD") == "1"
     print("| mesh | srcodec file | bytes | bpv | PSNR dB | Draco bytes at that PSNR | srcodec / Draco "
           "| encode s (wall) |")

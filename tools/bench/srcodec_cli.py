@@ -1,6 +1,6 @@
 """Running the srcodec binary from the benchmark scripts in this folder (adaptive_target.py,
-corpus_remesh.py, decoded_folds.py, remesh_quality.py): where the binary and the corpus are, and
-one call that runs a command and says what failed.
+corpus_remesh.py, decoded_folds.py, default_rate.py, remesh_quality.py): where the binary and the corpus
+are, one call that runs a command and says what failed, and the measurements they share.
 
 SRCODEC in the environment names another binary (default: build/tools/srcodec of this checkout)."""
 import json
@@ -11,6 +11,7 @@ import sys
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SRCODEC = os.environ.get("SRCODEC", os.path.join(ROOT, "build", "tools", "srcodec"))
 CORPUS = os.path.join(ROOT, "..", "shared", "data", "meshes")
+MESH_SUFFIXES = (".obj", ".ply", ".off", ".stl")  # what srcodec reads
 
 
 class Failed(RuntimeError):
@@ -34,6 +35,23 @@ def run(args):
 def run_json(args):
     """run() of a command given --json: its output read as JSON."""
     return json.loads(run(args))
+
+
+def corpus_meshes():
+    """The names of the corpus's meshes, sorted."""
+    return sorted(f for f in os.listdir(CORPUS) if f.endswith(MESH_SUFFIXES))
+
+
+def psnr(reference, test, extra=()):
+    """`srcodec compare REFERENCE TEST` (with `extra` options)'s PSNR in dB."""
+    return run_json(["compare", reference, test, "--json"] + list(extra))["psnr"]
+
+
+def draco_point(mesh, qp, decoded):
+    """Draco's round trip of `mesh` at `qp` quantization bits (`-cl 10`), its decoded mesh written to
+    `decoded`: (bytes, PSNR of the decoded mesh against `mesh`)."""
+    size = run_json(["draco", mesh, "--qp", str(qp), "--decoded", decoded, "--json"])["bytes"]
+    return size, psnr(mesh, decoded)
 
 
 def or_exit(call, *args):

@@ -62,20 +62,24 @@ StatusOr<uint64_t> segment_bytes_for_psnr(const StreamCutter& cutter, double tar
 StatusOr<Knee> knee_of_stream(const StreamCutter& cutter, size_t input_vertices) {
   if (input_vertices == 0) return invalid_argument("rate control: the input has no vertices");
   const double bits_per_byte_vertex = 8.0 / static_cast<double>(input_vertices);
-  std::vector<Knee> cuts(1);  // every cut measured, each file kKneeCutRatio times the last
-  SRCODEC_ASSIGN_OR_RETURN(std::vector<uint8_t> smallest, cutter.cut(0));
-  cuts[0].file_bytes = smallest.size();
-  SRCODEC_ASSIGN_OR_RETURN(cuts[0].psnr, cutter.psnr(0, kRateControlSamples));
+  // The cut keeping `segment_bytes`: its file's size and PSNR.
+  const auto measure = [&](uint64_t segment_bytes) -> StatusOr<Knee> {
+    Knee c;
+    c.segment_bytes = segment_bytes;
+    SRCODEC_ASSIGN_OR_RETURN(std::vector<uint8_t> file, cutter.cut(segment_bytes));
+    c.file_bytes = file.size();
+    SRCODEC_ASSIGN_OR_RETURN(c.psnr, cutter.psnr(segment_bytes, kRateControlSamples));
+    return c;
+  };
+  std::vector<Knee> cuts;  // every cut measured, each file kKneeCutRatio times the last
+  SRCODEC_ASSIGN_OR_RETURN(Knee smallest, measure(0));
+  cuts.push_back(smallest);
   // The next cut, unless the last one measured is the whole stream.
   const auto measure_next = [&]() -> Status {
     const Knee& last = cuts.back();
     const auto budget = static_cast<uint64_t>(std::ceil(static_cast<double>(last.file_bytes) * kKneeCutRatio));
-    SRCODEC_ASSIGN_OR_RETURN(uint64_t segment_bytes, cutter.segment_bytes_within(budget));
-    Knee next;
-    next.segment_bytes = std::max(segment_bytes, last.segment_bytes + 1);
-    SRCODEC_ASSIGN_OR_RETURN(std::vector<uint8_t> file, cutter.cut(next.segment_bytes));
-    next.file_bytes = file.size();
-    SRCODEC_ASSIGN_OR_RETURN(next.psnr, cutter.psnr(next.segment_bytes, kRateControlSamples));
+    SRCODEC_ASSIGN_OR_RETURN(uint64_t within, cutter.segment_bytes_within(budget));
+    SRCODEC_ASSIGN_OR_RETURN(Knee next, measure(std::max(within, last.segment_bytes + 1)));
     cuts.push_back(next);
     return ok_status();
   };
