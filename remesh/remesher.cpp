@@ -480,6 +480,17 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
     wide.wide_candidates = 128;
     untangle_out(&out, wide);
   }
+  // No triangle of any level folds or pleats more (relax_slivers refuses
+  // such moves), so the untangling's counts stay the output's.
+  if (options.relax_slivers && options.fit_surface && out.levels > 0) {
+    const LevelsToMove moving = levels_to_move(out.hierarchy, out.levels, out.base.positions.size(), out.positions.size());
+    rep.slivers = relax_slivers(untangle_data().side_at(), moving.triangles[static_cast<size_t>(out.levels)],
+                                moving.triangles[static_cast<size_t>(out.levels) - 1], moving.fixed, &out.positions);
+    progress("slivers: " + std::to_string(rep.slivers.moved) + " moves; finest triangles of quality below " +
+             std::to_string(SliverRelaxOptions{}.poor_quality).substr(0, 4) + ": " +
+             std::to_string(rep.slivers.poor_before) + " -> " + std::to_string(rep.slivers.poor_after) + ", " +
+             std::to_string(rep.slivers.seconds) + " s");
+  }
   return out;
 }
 

@@ -71,6 +71,11 @@ void add_remesh_flags(CLI::App* cmd, RemeshFlags& f, bool for_coding) {
                 "new vertex in the middle of that path and keep Lloyd from making such edges, instead of "
                 "bridging the gap; helps meshes with narrow gaps (the bunny at 5 levels), costs meshes made of "
                 "thin flaps (beast)");
+  cmd->add_flag("!--no-relax-slivers", f.relax_slivers,
+                "Leave the finest level's slivers as they are: by default, last, each vertex of the finest level "
+                "alone at a triangle of quality below 0.5 moves along its tangent plane toward its neighbours' "
+                "mean where that makes the triangles around it rounder and folds none (fewer triangles turn "
+                "over after coding; off with --no-fit-surface)");
   cmd->add_option("--oversample", f.oversample, "Subdivision steps before remeshing: auto, 0, 1, 2 or 3")
       ->capture_default_str();
   cmd->add_option("--scheme", f.scheme, "Oversampling scheme: butterfly, loop, or linear (keeps the input's facets)")->capture_default_str();
@@ -95,6 +100,7 @@ StatusOr<RemeshOptions> to_remesh_options(const RemeshFlags& o) {
   r.untangle = o.untangle;
   r.unsplit_tangles = o.unsplit_tangles;
   r.follow_detours = o.follow_detours;
+  r.relax_slivers = o.relax_slivers;
   if (o.oversample == "auto") {
     r.oversample = -1;
   } else if (o.oversample.size() == 1 && o.oversample[0] >= '0' && o.oversample[0] <= '3') {

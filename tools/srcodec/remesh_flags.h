@@ -23,13 +23,15 @@ struct RemeshFlags {
   bool untangle = true;
   bool unsplit_tangles = true;
   bool follow_detours = false;
+  bool relax_slivers = true;
   // Set by add_remesh_flags: without --levels, `levels` is fitted to small
   // inputs (RemeshOptions::fit_levels).
   const CLI::Option* levels_option = nullptr;
 };
 
 // Adds --levels, --base-vertices, --threshold, --uniform, --tolerance, --max-loss, --deepen, --no-fit-surface,
-// --no-untangle, --keep-tangled-splits (or --unsplit-tangles), --follow-detours, --oversample, --scheme.
+// --no-untangle, --keep-tangled-splits (or --unsplit-tangles), --follow-detours, --no-relax-slivers,
+// --oversample, --scheme.
 // With `for_coding` (encode, rd) the unsplitting is off unless
 // --unsplit-tangles asks for it; remesh has it on, --keep-tangled-splits
 // turns it off.
