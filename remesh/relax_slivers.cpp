@@ -79,12 +79,14 @@ SliverRelaxReport relax_slivers(const FoldCounter::Sides& sides, const std::vect
       const int32_t row = static_cast<int32_t>(v);
       if (!movable[v]) continue;
       double worst = 1.0;
+      bool tangled = false;  // left to the untangling, whose counts then stay the output's
       Eigen::Vector3d normal = Eigen::Vector3d::Zero();
       for (const int32_t* t = star.begin(row); t != star.end(row); ++t) {
         worst = std::min(worst, quality(finest[*t]));
         normal += triangle_normal(p, finest[*t]);
+        tangled = tangled || !sound(*t);
       }
-      if (!(worst < options.poor_quality) || !(normal.norm() > 0.0)) continue;
+      if (tangled || !(worst < options.poor_quality) || !(normal.norm() > 0.0)) continue;
       bool flat = true;
       for (const int32_t* u = ring.begin(row); flat && u != ring.end(row); ++u)
         flat = side[*u].dot(side[v]) > options.flat_cosine;

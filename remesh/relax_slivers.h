@@ -39,14 +39,14 @@ double triangle_quality(const Eigen::Vector3d& a, const Eigen::Vector3d& b, cons
 
 // Moves each vertex of `finest` that `coarser` (the level below's
 // triangles) does not use and `fixed` leaves free (0), at a triangle of
-// quality below options.poor_quality, to its neighbours' mean pressed onto
-// its tangent plane (the normal of its triangles). A move is kept when the
-// worst triangle at the vertex gets better, every triangle at it faces
-// along the sides of the input (`sides`, as the fold count judges) at its
-// corners, and none meets a neighbour at more than 150 degrees: no level
-// gets a folded triangle or a pleat more, and the coarser levels do not
-// change. Vertices in increasing order, up to options.rounds rounds while
-// one moves. Deterministic.
+// quality below options.poor_quality and at no folded triangle or pleat, to
+// its neighbours' mean pressed onto its tangent plane (the normal of its
+// triangles). A move is kept when the worst triangle at the vertex gets
+// better, every triangle at it faces along the sides of the input (`sides`,
+// as the fold count judges) at its corners, and none meets a neighbour at
+// more than 150 degrees: no level gets a folded triangle or a pleat more or
+// less, and the coarser levels do not change. Vertices in increasing order,
+// up to options.rounds rounds while one moves. Deterministic.
 SliverRelaxReport relax_slivers(const FoldCounter::Sides& sides, const std::vector<std::array<int32_t, 3>>& finest,
                                 const std::vector<std::array<int32_t, 3>>& coarser, const std::vector<char>& fixed,
                                 std::vector<Eigen::Vector3d>* positions, const SliverRelaxOptions& options = {});

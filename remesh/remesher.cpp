@@ -480,10 +480,12 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
     wide.wide_candidates = 128;
     untangle_out(&out, wide);
   }
-  // No triangle of any level folds or pleats more (relax_slivers refuses
-  // such moves), so the untangling's counts stay the output's.
+  // No triangle of any level folds or pleats more or less (relax_slivers
+  // moves no vertex of a tangled triangle and refuses moves that tangle
+  // one), so the untangling's counts stay the output's.
   if (options.relax_slivers && options.fit_surface && out.levels > 0) {
-    const LevelsToMove moving = levels_to_move(out.hierarchy, out.levels, out.base.positions.size(), out.positions.size());
+    const LevelsToMove moving =
+        levels_to_move(out.hierarchy, out.levels, out.base.positions.size(), out.positions.size());
     rep.slivers = relax_slivers(untangle_data().side_at(), moving.triangles[static_cast<size_t>(out.levels)],
                                 moving.triangles[static_cast<size_t>(out.levels) - 1], moving.fixed, &out.positions);
     progress("slivers: " + std::to_string(rep.slivers.moved) + " moves; finest triangles of quality below " +
