@@ -34,6 +34,28 @@ Adjacency vertex_neighbors(size_t n, const std::vector<std::array<int32_t, 3>>& 
   return adj;
 }
 
+std::vector<std::array<int32_t, 3>> triangles_across(const std::vector<std::array<int32_t, 3>>& triangles) {
+  std::vector<std::array<int32_t, 3>> across(triangles.size(), {-1, -1, -1});
+  std::vector<std::array<int32_t, 4>> edges;  // lower vertex, higher vertex, triangle, corner
+  edges.reserve(3 * triangles.size());
+  for (size_t t = 0; t < triangles.size(); ++t)
+    for (int c = 0; c < 3; ++c) {
+      const auto [a, b] = std::minmax(triangles[t][c], triangles[t][(c + 1) % 3]);
+      edges.push_back({a, b, static_cast<int32_t>(t), c});
+    }
+  std::sort(edges.begin(), edges.end());
+  for (size_t i = 0; i < edges.size();) {
+    size_t j = i;
+    while (j < edges.size() && edges[j][0] == edges[i][0] && edges[j][1] == edges[i][1]) ++j;
+    if (j - i == 2) {
+      across[static_cast<size_t>(edges[i][2])][static_cast<size_t>(edges[i][3])] = edges[i + 1][2];
+      across[static_cast<size_t>(edges[i + 1][2])][static_cast<size_t>(edges[i + 1][3])] = edges[i][2];
+    }
+    i = j;
+  }
+  return across;
+}
+
 std::vector<int32_t> vertex_components(size_t n, const std::vector<std::array<int32_t, 3>>& triangles) {
   const Adjacency neighbours = vertex_neighbors(n, triangles);
   std::vector<int32_t> component(n, -1), stack;

@@ -30,6 +30,9 @@ std::vector<int32_t> vertex_components(size_t vertex_count, const std::vector<st
 // Indices of the triangles around each vertex, in increasing order.
 Adjacency vertex_triangles(size_t vertex_count, const std::vector<std::array<int32_t, 3>>& triangles);
 
+// Per triangle, its neighbour across each edge (corner c to corner c + 1):
+// -1 on the boundary, or where more than two triangles meet.
+std::vector<std::array<int32_t, 3>> triangles_across(const std::vector<std::array<int32_t, 3>>& triangles);
 // The triangles of `triangles` around vertex a (`around`: vertex_triangles)
 // that also use vertex b: 1 on a boundary edge, 2 inside, 0 if ab is no edge.
 int triangles_on_edge(const Adjacency& around, const std::vector<std::array<int32_t, 3>>& triangles, int32_t a,

@@ -15,25 +15,6 @@ double triangle_quality(const Eigen::Vector3d& a, const Eigen::Vector3d& b, cons
   return 2.0 * std::sqrt(3.0) * (b - a).cross(c - a).norm() / squares;  // 4 sqrt(3) * area
 }
 
-namespace {
-
-// Across each edge e (from corner e to corner e + 1) of each triangle, the
-// triangle on the other side, -1 where there is none.
-std::vector<std::array<int32_t, 3>> triangles_across(const std::vector<std::array<int32_t, 3>>& triangles,
-                                                     const Adjacency& around) {
-  std::vector<std::array<int32_t, 3>> across(triangles.size(), {-1, -1, -1});
-  for (size_t t = 0; t < triangles.size(); ++t)
-    for (int e = 0; e < 3; ++e) {
-      const int32_t a = triangles[t][e], b = triangles[t][(e + 1) % 3];
-      for (const int32_t* u = around.begin(b); u != around.end(b); ++u)
-        for (int f = 0; f < 3; ++f)
-          if (triangles[*u][f] == b && triangles[*u][(f + 1) % 3] == a) across[t][e] = *u;
-    }
-  return across;
-}
-
-}  // namespace
-
 SliverRelaxReport relax_slivers(const FoldCounter::Sides& sides, const std::vector<std::array<int32_t, 3>>& finest,
                                 const std::vector<std::array<int32_t, 3>>& coarser, const std::vector<char>& fixed,
                                 std::vector<Eigen::Vector3d>* positions, const SliverRelaxOptions& options) {
@@ -51,20 +32,8 @@ SliverRelaxReport relax_slivers(const FoldCounter::Sides& sides, const std::vect
     for (int32_t v : t) movable[v] = 0;
   const Adjacency star = vertex_triangles(n, finest);
   const Adjacency ring = vertex_neighbors(n, finest);
-  const std::vector<std::array<int32_t, 3>> across = triangles_across(finest, star);
-  // Each finest vertex's side of the input, as the fold count judges it.
-  std::vector<Eigen::Vector3d> side(n, Eigen::Vector3d::Zero());
-  {
-    std::vector<int32_t> used;
-    std::vector<Eigen::Vector3d> at;
-    for (size_t v = 0; v < n; ++v)
-      if (star.begin(static_cast<int32_t>(v)) != star.end(static_cast<int32_t>(v))) {
-        used.push_back(static_cast<int32_t>(v));
-        at.push_back(p[v]);
-      }
-    const std::vector<Eigen::Vector3d> of = sides.of(at);
-    for (size_t i = 0; i < used.size(); ++i) side[used[i]] = of[i];
-  }
+  const std::vector<std::array<int32_t, 3>> across = triangles_across(finest);
+  std::vector<Eigen::Vector3d> side = sides.of(p);  // each vertex's side of the input, as the fold count judges
   auto sound = [&](int32_t t) {  // faces out, and no pleat with a neighbour
     if (!(facing(p, side, finest[t]) > kFoldedFacing)) return false;
     const Eigen::Vector3d normal = triangle_normal(p, finest[t]);

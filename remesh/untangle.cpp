@@ -31,7 +31,7 @@ struct LevelAdjacency {
     return around.begin() + offsets[static_cast<size_t>(v) + 1];
   }
 
-  LevelAdjacency(const Triangles& triangles, size_t n) : offsets(n + 1, 0), across(triangles.size()) {
+  LevelAdjacency(const Triangles& triangles, size_t n) : offsets(n + 1, 0), across(triangles_across(triangles)) {
     for (const auto& t : triangles)
       for (int32_t v : t) ++offsets[static_cast<size_t>(v) + 1];
     for (size_t v = 0; v < n; ++v) offsets[v + 1] += offsets[v];
@@ -40,25 +40,6 @@ struct LevelAdjacency {
     for (size_t t = 0; t < triangles.size(); ++t)
       for (int32_t v : triangles[t])
         around[static_cast<size_t>(fill[static_cast<size_t>(v)]++)] = static_cast<int32_t>(t);
-    std::vector<std::array<int32_t, 4>> edges;  // lower vertex, higher vertex, triangle, corner
-    edges.reserve(3 * triangles.size());
-    for (size_t t = 0; t < triangles.size(); ++t) {
-      across[t] = {-1, -1, -1};
-      for (int c = 0; c < 3; ++c) {
-        const auto [a, b] = std::minmax(triangles[t][c], triangles[t][(c + 1) % 3]);
-        edges.push_back({a, b, static_cast<int32_t>(t), c});
-      }
-    }
-    std::sort(edges.begin(), edges.end());
-    for (size_t i = 0; i < edges.size();) {
-      size_t j = i;
-      while (j < edges.size() && edges[j][0] == edges[i][0] && edges[j][1] == edges[i][1]) ++j;
-      if (j - i == 2) {
-        across[static_cast<size_t>(edges[i][2])][static_cast<size_t>(edges[i][3])] = edges[i + 1][2];
-        across[static_cast<size_t>(edges[i + 1][2])][static_cast<size_t>(edges[i + 1][3])] = edges[i][2];
-      }
-      i = j;
-    }
   }
 };
 
