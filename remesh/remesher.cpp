@@ -493,6 +493,12 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
              std::to_string(rep.slivers.poor_before) + " -> " + std::to_string(rep.slivers.poor_after) + ", " +
              std::to_string(rep.slivers.seconds) + " s");
   }
+  if (rep.untangle.rounds > 0 && tangled(rep.untangle.after) > 0) {
+    const LevelsToMove levels_now =
+        levels_to_move(out.hierarchy, out.levels, out.base.positions.size(), out.positions.size());
+    rep.tangled_places = tangled_places(untangle_data(), levels_now.triangles, out.positions,
+                                        kTangledPlaceReach * bounding_box_diagonal(mesh.positions));
+  }
   return out;
 }
 

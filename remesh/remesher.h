@@ -115,7 +115,12 @@ struct RemeshReport {
     double seconds = 0.0;
   } unsplit;
   SliverRelaxReport slivers;  // with RemeshOptions::relax_slivers
+  // Where the output's tangles are (remesh/untangle.h), when the untangling
+  // ran and left any: places within kTangledPlaceReach of the bounding box's
+  // diagonal of each other are one.
+  std::vector<TangledPlace> tangled_places;
 };
+constexpr double kTangledPlaceReach = 0.02;
 
 // The default base size: the larger the base mesh, the less the
 // parameterization is stretched (the main limit on quality), so as many base

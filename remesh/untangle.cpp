@@ -10,6 +10,7 @@
 #include "remesh/adjacency.h"
 #include "remesh/fit.h"
 #include "remesh/geometry.h"
+#include "remesh/point_cloud.h"
 #include "remesh/small_lp.h"
 
 namespace srcodec {
@@ -612,6 +613,80 @@ UntangleReport untangle(const UntangleInput& input, const std::vector<Triangles>
   }
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;
+}
+
+std::vector<TangledPlace> tangled_places(const UntangleInput& sides, const std::vector<Triangles>& levels,
+                                         const std::vector<Eigen::Vector3d>& x, double reach) {
+  struct Tangle {
+    Eigen::Vector3d at;
+    bool finest, fold;
+  };
+  std::vector<Tangle> tangles;
+  const std::vector<Eigen::Vector3d> side = sides.side_at().of(x);
+  for (size_t k = 0; k < levels.size(); ++k) {
+    const Triangles& level = levels[k];
+    const bool finest = k + 1 == levels.size();
+    auto centroid = [&](size_t t) {
+      return Eigen::Vector3d((x[static_cast<size_t>(level[t][0])] + x[static_cast<size_t>(level[t][1])] +
+                              x[static_cast<size_t>(level[t][2])]) / 3.0);
+    };
+    for (size_t t = 0; t < level.size(); ++t)
+      if (!(facing(x, side, level[t]) > kFoldedFacing)) tangles.push_back({centroid(t), finest, true});
+    const std::vector<std::array<int32_t, 3>> across = triangles_across(level);
+    for (size_t t = 0; t < level.size(); ++t)
+      for (int32_t u : across[t])  // each pair once, from its lower triangle (as Judge::count)
+        if (u > static_cast<int32_t>(t) &&
+            pleat(triangle_normal(x, level[t]), triangle_normal(x, level[static_cast<size_t>(u)])))
+          tangles.push_back({0.5 * (centroid(t) + centroid(static_cast<size_t>(u))), finest, false});
+  }
+  if (tangles.empty()) return {};
+  // Single linkage by union-find over the pairs within reach.
+  std::vector<size_t> parent(tangles.size());
+  for (size_t i = 0; i < parent.size(); ++i) parent[i] = i;
+  auto root = [&](size_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  std::vector<Eigen::Vector3d> points;
+  for (const Tangle& t : tangles) points.push_back(t.at);
+  const PointCloud cloud{points};
+  PointTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+  tree.buildIndex();
+  std::vector<std::pair<uint32_t, double>> near;
+  for (size_t i = 0; i < points.size(); ++i) {
+    tree.radiusSearch(points[i].data(), reach * reach, near, nanoflann::SearchParams());
+    for (const auto& [j, d2] : near) parent[root(j)] = root(i);
+  }
+  std::vector<TangledPlace> places;
+  std::vector<int32_t> place_of(tangles.size(), -1);
+  std::vector<size_t> members;
+  for (size_t i = 0; i < tangles.size(); ++i) {
+    int32_t& p = place_of[root(i)];
+    if (p < 0) {
+      p = static_cast<int32_t>(places.size());
+      places.emplace_back();
+      members.push_back(0);
+    }
+    TangledPlace& place = places[static_cast<size_t>(p)];
+    place.centre += tangles[i].at;
+    ++members[static_cast<size_t>(p)];
+    TangleCount& c = place.count;
+    ++(tangles[i].fold ? (tangles[i].finest ? c.folded : c.coarser_folded)
+                       : (tangles[i].finest ? c.pleats : c.coarser_pleats));
+  }
+  for (size_t p = 0; p < places.size(); ++p) places[p].centre /= static_cast<double>(members[p]);
+  for (size_t i = 0; i < tangles.size(); ++i) {
+    TangledPlace& place = places[static_cast<size_t>(place_of[root(i)])];
+    place.radius = std::max(place.radius, (tangles[i].at - place.centre).norm());
+  }
+  auto total = [](const TangledPlace& p) {
+    return p.count.folded + p.count.pleats + p.count.coarser_folded + p.count.coarser_pleats;
+  };
+  std::sort(places.begin(), places.end(), [&](const TangledPlace& a, const TangledPlace& b) {
+    if (total(a) != total(b)) return total(a) > total(b);
+    return std::lexicographical_compare(a.centre.data(), a.centre.data() + 3, b.centre.data(), b.centre.data() + 3);
+  });
+  return places;
 }
 
 }  // namespace srcodec

@@ -110,4 +110,20 @@ UntangleReport untangle(const TriangleMesh& sides, const std::vector<std::vector
                         const std::vector<char>& fixed, std::vector<Eigen::Vector3d>* positions,
                         const UntangleOptions& options = {});
 
+// Where tangles are left, for the user (`srcodec remesh` prints the largest
+// places): the folded triangles and the pleats of every level, judged and
+// counted as UntangleReport::after counts them, a fold at its triangle's
+// centroid and a pleat at the mean of its two triangles' centroids, gathered
+// into places: a tangle joins the place of every other within `reach` of it
+// (single linkage). The places' counts sum to the whole's.
+struct TangledPlace {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // the mean of its tangles' points
+  double radius = 0.0;                                // the farthest of them from the centre
+  TangleCount count;
+};
+// Most tangles first (then by centre, x first, for a stable order).
+std::vector<TangledPlace> tangled_places(const UntangleInput& sides,
+                                         const std::vector<std::vector<std::array<int32_t, 3>>>& levels,
+                                         const std::vector<Eigen::Vector3d>& positions, double reach);
+
 }  // namespace srcodec

@@ -133,6 +133,56 @@ TEST(Untangle, LeavesFixedVertices) {
   EXPECT_EQ(x, grid.positions);
 }
 
+// Where the tangles are: a vertex of both levels pushed at (2, 2) and one of
+// the finest level only at (5, 7) tangle two places, each around its push,
+// and only the first has coarser folds. The places' counts sum to the
+// untangling's own count; with a reach that spans both, they are one place;
+// untangled, there is none.
+TEST(TangledPlaces, GatherTheTanglesAroundEachPush) {
+  const TriangleMesh input = test::flat_square(60);
+  TwoLevels grid;
+  const Eigen::Vector3d both = grid.positions[static_cast<size_t>(TwoLevels::id(2, 2))];
+  const Eigen::Vector3d finest = grid.positions[static_cast<size_t>(TwoLevels::id(5, 7))];
+  grid.positions[static_cast<size_t>(TwoLevels::id(2, 2))] += Eigen::Vector3d(2.6, 0.3, 0.0) / 8.0;
+  grid.positions[static_cast<size_t>(TwoLevels::id(5, 7))] += Eigen::Vector3d(1.5, 0.2, 0.0) / 8.0;
+  std::vector<char> all_fixed(grid.positions.size(), 1);
+  std::vector<Eigen::Vector3d> x = grid.positions;
+  const UntangleInput sides(input);
+  const TangleCount whole = untangle(sides, grid.levels, all_fixed, &x).after;  // counts, moves nothing
+  ASSERT_GT(whole.folded, 0u);
+  ASSERT_GT(whole.coarser_folded, 0u);
+
+  const std::vector<TangledPlace> places = tangled_places(sides, grid.levels, x, 0.15);
+  ASSERT_EQ(places.size(), 2u);
+  TangleCount sum;
+  for (const TangledPlace& p : places) {
+    sum.folded += p.count.folded;
+    sum.pleats += p.count.pleats;
+    sum.coarser_folded += p.count.coarser_folded;
+    sum.coarser_pleats += p.count.coarser_pleats;
+    EXPECT_GT(p.radius, 0.0);
+    EXPECT_LT(p.radius, 0.3);
+  }
+  EXPECT_EQ(sum.folded, whole.folded);
+  EXPECT_EQ(sum.pleats, whole.pleats);
+  EXPECT_EQ(sum.coarser_folded, whole.coarser_folded);
+  EXPECT_EQ(sum.coarser_pleats, whole.coarser_pleats);
+  const bool first_is_both = (places[0].centre - both).norm() < (places[0].centre - finest).norm();
+  const TangledPlace& at_both = places[first_is_both ? 0 : 1];
+  const TangledPlace& at_finest = places[first_is_both ? 1 : 0];
+  EXPECT_LT((at_both.centre - both).norm(), 0.25);
+  EXPECT_LT((at_finest.centre - finest).norm(), 0.25);
+  EXPECT_GT(at_both.count.coarser_folded, 0u);
+  EXPECT_EQ(at_finest.count.coarser_folded, 0u);
+  EXPECT_GT(at_finest.count.folded, 0u);
+
+  const std::vector<TangledPlace> one = tangled_places(sides, grid.levels, x, 2.0);
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_EQ(one[0].count.folded, whole.folded);
+  EXPECT_EQ(one[0].count.coarser_folded, whole.coarser_folded);
+  EXPECT_TRUE(tangled_places(sides, grid.levels, TwoLevels().positions, 2.0).empty());
+}
+
 // A base vertex (fixed == 2) may only move onto input vertices. Pushed past
 // its neighbours, onto an input vertex, it folds triangles of both levels;
 // it hops back near its place, onto another vertex of its own component of

@@ -140,6 +140,20 @@ TEST(Cli, RemeshTextReportNamesLeftoverFolds) {
                            " of coarser levels face against the input (corners judged by its nearest vertices); " +
                            count("untangled_pleats") + " and " + count("untangled_coarser_pleats") + " edge(s) pleat";
   EXPECT_NE(text.out.find(line), std::string::npos) << text.out;
+  // And where: the JSON lists the places (remesh/untangle.h, tangled_places),
+  // the text the first of them, with its counts.
+  const size_t places = json.out.find("\"tangled_places\": [{");
+  ASSERT_NE(places, std::string::npos) << json.out;
+  const std::string first = json.out.substr(places);
+  auto place_count = [&](const std::string& key) {
+    return std::to_string(static_cast<size_t>(json_number(first, key)));
+  };
+  const std::string where = "\n  at (";
+  const std::string counts = ": " + place_count("folded") + " + " + place_count("coarser_folded") + " folded, " +
+                             place_count("pleats") + " + " + place_count("coarser_pleats") + " pleats\n";
+  const size_t at = text.out.find(where);
+  ASSERT_NE(at, std::string::npos) << text.out;
+  EXPECT_NE(text.out.find(counts, at), std::string::npos) << counts << "\n" << text.out;
 
   // Without the untangling, the refinement's own count (3 levels leave some).
   const std::string plain = " --no-untangle --quiet --levels 3 --scheme linear --samples 20000 " + in + " -o ";
@@ -160,6 +174,7 @@ TEST(Cli, RemeshTextReportNamesLeftoverFolds) {
   auto clean = run_srcodec("remesh --quiet --levels 2 --samples 20000 " + in + " -o " + q(dir.file("e.obj")));
   ASSERT_EQ(clean.exit_code, 0) << clean.err;
   EXPECT_EQ(clean.out.find("folds:"), std::string::npos) << clean.out;
+  EXPECT_EQ(clean.out.find("  at ("), std::string::npos) << clean.out;
 }
 
 // The unsplitting (remesh/unsplit_tangles.h) is on for remesh and off for

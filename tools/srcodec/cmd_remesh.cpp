@@ -1,5 +1,6 @@
 // `srcodec remesh MESH -o OUT`: adaptive Voronoi semi-regular remeshing
 // (Kammoun, Payan, Antonini), with per-level size and error against the input.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -149,7 +150,21 @@ Status run_remesh(const RemeshCliOptions& o) {
           .field("coarsening_seconds", report.coarsening.seconds)
           .field("coarsened_folded_by_nearest_input", report.coarsening.folds.folded_by_nearest_input)
           .field("coarsened_pleats", report.coarsening.folds.pleats);
-    j.field("seconds", seconds)
+    std::vector<JsonWriter> places;
+    for (const TangledPlace& place : report.tangled_places) {
+      JsonWriter pj;
+      pj.field("x", place.centre.x())
+          .field("y", place.centre.y())
+          .field("z", place.centre.z())
+          .field("radius", place.radius)
+          .field("folded", place.count.folded)
+          .field("coarser_folded", place.count.coarser_folded)
+          .field("pleats", place.count.pleats)
+          .field("coarser_pleats", place.count.coarser_pleats);
+      places.push_back(pj);
+    }
+    j.array("tangled_places", places)
+        .field("seconds", seconds)
         .array("levels", level_json);
     std::cout << j.str() << "\n";
   } else {
@@ -158,11 +173,23 @@ Status run_remesh(const RemeshCliOptions& o) {
     const RefineLevelReport* last = report.levels.empty() ? nullptr : &report.levels.back();
     const TangleCount& left = report.untangle.after;
     if (report.untangle.rounds > 0) {  // the untangling's count, of the output
-      if (left.folded + left.coarser_folded + left.pleats + left.coarser_pleats > 0)
+      if (left.folded + left.coarser_folded + left.pleats + left.coarser_pleats > 0) {
         std::printf("folds: %zu triangle(s) of level %d and %zu of coarser levels face against the input (corners "
                     "judged by its nearest vertices); %zu and %zu edge(s) pleat (their triangles meet at more than "
                     "150 degrees)\n",
                     left.folded, srm.levels, left.coarser_folded, left.pleats, left.coarser_pleats);
+        // Where, the largest places first (all of them in the JSON).
+        constexpr size_t kPlacesShown = 5;
+        const auto& places = report.tangled_places;
+        for (size_t i = 0; i < std::min(places.size(), kPlacesShown); ++i) {
+          const TangledPlace& p = places[i];
+          std::printf("  at (%.6g, %.6g, %.6g), within %.3g: %zu + %zu folded, %zu + %zu pleats\n", p.centre.x(),
+                      p.centre.y(), p.centre.z(), p.radius, p.count.folded, p.count.coarser_folded, p.count.pleats,
+                      p.count.coarser_pleats);
+        }
+        if (places.size() > kPlacesShown)
+          std::printf("  and %zu more place(s) (--json lists them all)\n", places.size() - kPlacesShown);
+      }
     } else if (last && last->folded_triangles + last->coarse_folded_triangles + last->pleats > 0) {
       std::printf("folds: %zu triangle(s) of level %d and %zu of coarser levels face against the input; %zu edge(s) "
                   "pleat (their triangles meet at more than 150 degrees)\n",
