@@ -480,25 +480,28 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
     wide.wide_candidates = 128;
     untangle_out(&out, wide);
   }
+  // The levels' triangles, for the sliver relaxation and for the places of
+  // the tangles left; it moves vertices only, so both see the same levels.
+  const bool relaxing = options.relax_slivers && options.fit_surface && out.levels > 0;
+  const bool placing = rep.untangle.rounds > 0 && tangled(rep.untangle.after) > 0;
+  const LevelsToMove final_levels =
+      relaxing || placing ? levels_to_move(out.hierarchy, out.levels, out.base.positions.size(), out.positions.size())
+                          : LevelsToMove{};
   // No triangle of any level folds or pleats more or less (relax_slivers
   // moves no vertex of a tangled triangle and refuses moves that tangle
   // one), so the untangling's counts stay the output's.
-  if (options.relax_slivers && options.fit_surface && out.levels > 0) {
-    const LevelsToMove moving =
-        levels_to_move(out.hierarchy, out.levels, out.base.positions.size(), out.positions.size());
-    rep.slivers = relax_slivers(untangle_data().side_at(), moving.triangles[static_cast<size_t>(out.levels)],
-                                moving.triangles[static_cast<size_t>(out.levels) - 1], moving.fixed, &out.positions);
+  if (relaxing) {
+    rep.slivers = relax_slivers(untangle_data().side_at(), final_levels.triangles[static_cast<size_t>(out.levels)],
+                                final_levels.triangles[static_cast<size_t>(out.levels) - 1], final_levels.fixed,
+                                &out.positions);
     progress("slivers: " + std::to_string(rep.slivers.moved) + " moves; finest triangles of quality below " +
              std::to_string(SliverRelaxOptions{}.poor_quality).substr(0, 4) + ": " +
              std::to_string(rep.slivers.poor_before) + " -> " + std::to_string(rep.slivers.poor_after) + ", " +
              std::to_string(rep.slivers.seconds) + " s");
   }
-  if (rep.untangle.rounds > 0 && tangled(rep.untangle.after) > 0) {
-    const LevelsToMove levels_now =
-        levels_to_move(out.hierarchy, out.levels, out.base.positions.size(), out.positions.size());
-    rep.tangled_places = tangled_places(untangle_data(), levels_now.triangles, out.positions,
+  if (placing)
+    rep.tangled_places = tangled_places(untangle_data(), final_levels.triangles, out.positions,
                                         kTangledPlaceReach * bounding_box_diagonal(mesh.positions));
-  }
   return out;
 }
 
