@@ -69,7 +69,7 @@ struct RemeshOptions {
   // With untangle, after it: where triangles are still folded or in a
   // pleat, the splits of the level below the finest around them undone
   // (remesh/unsplit_tangles.h; ours), then untangled again. (The CLI's
-  // encode and rd turn it off: it costs bytes, README "Unsplitting".)
+  // encode and rd turn it off: it costs bytes, docs/remesh_design.md, "Unsplitting".)
   bool unsplit_tangles = true;
   // Whether the unsplitting runs: it needs the fit and the untangling.
   bool unsplits() const { return fit_surface && untangle && unsplit_tangles; }

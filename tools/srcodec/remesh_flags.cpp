@@ -13,7 +13,8 @@ void add_remesh_flags(CLI::App* cmd, RemeshFlags& f, bool for_coding) {
                         ->check(CLI::Range(0, 12))
                         ->capture_default_str();
   cmd->add_option("--base-vertices", f.base_vertices,
-                  "Base mesh vertices (default: from the input size and levels, 100..4000; up to a quarter more where cells wrap around thin parts; see README)");
+                  "Base mesh vertices (default: from the input size and levels, 100..4000; up to a quarter more "
+                  "where cells wrap around thin parts; see docs/remesh_design.md)");
   auto* threshold = cmd->add_option("--threshold", f.threshold,
                                     "Adaptive: keep a triangle's split only when each corner's Voronoi cell holds "
                                     "more than this many (oversampled) input vertices (Eq. 5); judged on a uniform "
@@ -52,12 +53,12 @@ void add_remesh_flags(CLI::App* cmd, RemeshFlags& f, bool for_coding) {
   if (for_coding) {
     // Off for coding: an adaptive last level costs its refinement flags in
     // every prefix of the file (388 bytes on beast) and the top of the
-    // curve (README, "Unsplitting").
+    // curve (docs/remesh_design.md, "Unsplitting").
     f.unsplit_tangles = false;
     cmd->add_flag("--unsplit-tangles", f.unsplit_tangles,
                   "After the untangling, where triangles stay folded or in a pleat, leave the level below the "
                   "finest whole around one of their corners and untangle again, while that leaves fewer such "
-                  "triangles (as remesh does by default; costs bytes: see README)");
+                  "triangles (as remesh does by default; costs bytes: see docs/remesh_design.md)");
   } else {
     cmd->add_flag("!--keep-tangled-splits", f.unsplit_tangles,
                   "After the untangling, keep every split of the level below the finest: by default, where "
@@ -78,7 +79,8 @@ void add_remesh_flags(CLI::App* cmd, RemeshFlags& f, bool for_coding) {
                 "over after coding; off with --no-fit-surface)");
   cmd->add_option("--oversample", f.oversample, "Subdivision steps before remeshing: auto, 0, 1, 2 or 3")
       ->capture_default_str();
-  cmd->add_option("--scheme", f.scheme, "Oversampling scheme: butterfly, loop, or linear (keeps the input's facets)")->capture_default_str();
+  cmd->add_option("--scheme", f.scheme, "Oversampling scheme: butterfly, loop, or linear (keeps the input's facets)")
+      ->capture_default_str();
 }
 
 StatusOr<RemeshOptions> to_remesh_options(const RemeshFlags& o) {
