@@ -78,12 +78,17 @@ def main():
     folded = recount(pov, normals, cKDTree(pov), po, to)[0]
     input_normals = unit_vertex_normals(pin, tin)
     input_tree = cKDTree(pin)
+    centroid_tree = cKDTree(po[to].mean(1))
     fig = plt.figure(figsize=(8, 4 * len(places)))
     for row, place in enumerate(places):
         centre = np.array([place["x"], place["y"], place["z"]])
-        # The place's own spread and two of the remesh's edges around it.
-        near = to[(np.linalg.norm(po[to].mean(1) - centre, axis=1) < max(place["radius"], 1e-9) + 1e-9)]
-        edge = np.median(np.linalg.norm(po[near[:, 0]] - po[near[:, 1]], axis=1)) if len(near) else 0.0
+        # Far enough to show the place's spread and six of the remesh's edges
+        # around it (their median over the triangles there, or the 20 nearest
+        # a place of one tangle).
+        near = set(centroid_tree.query_ball_point(centre, place["radius"]))
+        near.update(np.atleast_1d(centroid_tree.query(centre, k=min(20, len(to)))[1]).tolist())
+        near = to[sorted(near)]
+        edge = np.median(np.linalg.norm(po[near[:, 0]] - po[near[:, 1]], axis=1))
         reach = max(1.5 * place["radius"], 6 * edge, 1e-6)
         mean_normal = input_normals[input_tree.query_ball_point(centre, reach)].sum(0)
         angles = view_angles(mean_normal)
