@@ -434,10 +434,9 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
   // fewer tangled triangles, all levels counted; up to 4 passes of each
   // kind. (Fitting the corners left whole to the input again, as the
   // measured coarsening does, cost ogre 9 s a pass and 0.1 dB.)
-  auto tangled = [](const TangleCount& c) { return c.folded + c.pleats + c.coarser_folded + c.coarser_pleats; };
   const bool unsplitting = options.unsplits() && out.levels > 0;
   for (int kind = 0; unsplitting && kind < 2; ++kind)
-    for (int pass = 0; pass < 4 && tangled(rep.untangle.after) > 0; ++pass) {
+    for (int pass = 0; pass < 4 && rep.untangle.after.total() > 0; ++pass) {
       UnsplitOptions unsplit;
       unsplit.coarser = kind == 1;
       UnsplitReport u;
@@ -446,11 +445,11 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
       if (u.stars == 0) break;
       const UntangleReport untangled = rep.untangle;
       untangle_out(&next, {});
-      const bool kept = tangled(rep.untangle.after) < tangled(untangled.after);
+      const bool kept = rep.untangle.after.total() < untangled.after.total();
       progress("unsplit" + std::string(unsplit.coarser ? " (coarser levels too)" : "") + ": " +
                std::to_string(u.stars) + " stars of level " + std::to_string(out.levels - 1) + " left whole (" +
                std::to_string(u.undone) + " splits undone) and untangled again: tangled triangles, all levels, " +
-               std::to_string(tangled(untangled.after)) + " -> " + std::to_string(tangled(rep.untangle.after)) +
+               std::to_string(untangled.after.total()) + " -> " + std::to_string(rep.untangle.after.total()) +
                (kept ? ", kept" : ", not kept"));
       if (!kept) {
         rep.untangle = untangled;
@@ -475,7 +474,7 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
   // search in every pass left fewer finest folds (6, 3, 2) but moved far
   // more vertices: beast 78.08, beast_tri 75.13, ogre 76.13 dB; 32 each
   // instead of 128 left beast 12 + 13 (twenty-ninth session).
-  if (untangling && out.levels > 0 && tangled(rep.untangle.after) > 0) {
+  if (untangling && out.levels > 0 && rep.untangle.after.total() > 0) {
     UntangleOptions wide;
     wide.wide_candidates = 128;
     untangle_out(&out, wide);
@@ -483,7 +482,7 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
   // The levels' triangles, for the sliver relaxation and for the places of
   // the tangles left; it moves vertices only, so both see the same levels.
   const bool relaxing = options.relax_slivers && options.fit_surface && out.levels > 0;
-  const bool placing = rep.untangle.rounds > 0 && tangled(rep.untangle.after) > 0;
+  const bool placing = rep.untangle.rounds > 0 && rep.untangle.after.total() > 0;
   const LevelsToMove final_levels =
       relaxing || placing ? levels_to_move(out.hierarchy, out.levels, out.base.positions.size(), out.positions.size())
                           : LevelsToMove{};

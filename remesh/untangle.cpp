@@ -679,11 +679,8 @@ std::vector<TangledPlace> tangled_places(const UntangleInput& sides, const std::
     TangledPlace& place = places[static_cast<size_t>(place_of[root(i)])];
     place.radius = std::max(place.radius, (tangles[i].at - place.centre).norm());
   }
-  auto total = [](const TangledPlace& p) {
-    return p.count.folded + p.count.pleats + p.count.coarser_folded + p.count.coarser_pleats;
-  };
   std::sort(places.begin(), places.end(), [&](const TangledPlace& a, const TangledPlace& b) {
-    if (total(a) != total(b)) return total(a) > total(b);
+    if (a.count.total() != b.count.total()) return a.count.total() > b.count.total();
     return std::lexicographical_compare(a.centre.data(), a.centre.data() + 3, b.centre.data(), b.centre.data() + 3);
   });
   return places;

@@ -44,6 +44,7 @@ struct TangleCount {
   size_t folded = 0;  // facing against the input normals at their corners
   size_t pleats = 0;  // pairs of neighbours meeting at more than 150 degrees
   size_t coarser_folded = 0, coarser_pleats = 0;
+  size_t total() const { return folded + pleats + coarser_folded + coarser_pleats; }
 };
 
 struct UntangleReport {

@@ -173,7 +173,7 @@ Status run_remesh(const RemeshCliOptions& o) {
     const RefineLevelReport* last = report.levels.empty() ? nullptr : &report.levels.back();
     const TangleCount& left = report.untangle.after;
     if (report.untangle.rounds > 0) {  // the untangling's count, of the output
-      if (left.folded + left.coarser_folded + left.pleats + left.coarser_pleats > 0) {
+      if (left.total() > 0) {
         std::printf("folds: %zu triangle(s) of level %d and %zu of coarser levels face against the input (corners "
                     "judged by its nearest vertices); %zu and %zu edge(s) pleat (their triangles meet at more than "
                     "150 degrees)\n",
