@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "format/status.h"
-#include "remesh/hierarchy.h"
+#include "format/semi_regular/hierarchy.h"
 
 namespace srcodec {
 

@@ -115,7 +115,7 @@ double component(const Eigen::Vector3d& v, int c) { return v[c]; }
 
 }  // namespace
 
-StatusOr<EncodedSrm> encode_srm(const SemiRegularMesh& mesh, const TriangleMesh& input, const EncodeOptions& options) {
+StatusOr<EncodedSrm> encode_srm(const SemiRegularMesh& mesh, const TriangleMesh& input, const SrmEncodeOptions& options) {
   if (input.positions.empty()) return invalid_argument("encode: the input mesh has no vertices");
   if (!(options.step_fraction > 0.0) || !(options.tangential_factor > 0.0))
     return invalid_argument("encode: the quantizer step and tangential factor must be positive");
@@ -239,7 +239,7 @@ StatusOr<int> decode_hierarchy(const SrmFile& file, int level, TriangleHierarchy
 
 }  // namespace
 
-StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const DecodeOptions& options) {
+StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const SrmDecodeOptions& options) {
   const SrmHeader& h = file.header;
   int level = options.level < 0 ? h.levels : std::min(options.level, h.levels);
   uint64_t total = 0;

@@ -1,7 +1,7 @@
 // The whole codec between a semi-regular mesh and .srm bytes (DESIGN.md data
 // flow): base mesh coding, refinement flags, the lifted Butterfly transform,
 // dead-zone quantization scaled per level and component, and embedded
-// bit-plane coding, in the container of format/srm_file.h.
+// bit-plane coding, in the container of format/srm/srm_file.h.
 #pragma once
 
 #include <cstdint>
@@ -9,13 +9,13 @@
 #include <vector>
 
 #include "format/mesh.h"
-#include "format/srm_file.h"
+#include "format/srm/srm_file.h"
 #include "format/status.h"
-#include "remesh/semi_regular_mesh.h"
+#include "format/semi_regular/semi_regular_mesh.h"
 
 namespace srcodec {
 
-struct EncodeOptions {
+struct SrmEncodeOptions {
   // The finest quantizer step of the full stream, as a fraction of the input's
   // bounding-box diagonal: far below any remeshing error, since rate control
   // truncates the embedded stream rather than re-quantizing.
@@ -43,9 +43,9 @@ struct EncodedSrm {
 // `input` is the original (cleaned) mesh: its counts and bounding box go in
 // the header, for bits per vertex and PSNR.
 StatusOr<EncodedSrm> encode_srm(const SemiRegularMesh& mesh, const TriangleMesh& input,
-                                const EncodeOptions& options = {});
+                                const SrmEncodeOptions& options = {});
 
-struct DecodeOptions {
+struct SrmDecodeOptions {
   int level = -1;                          // -1: the finest the file has
   // Refuse files that would decode to more vertices (about 500 bytes of
   // decoder memory each): a tiny file can describe a huge uniform mesh.
@@ -70,6 +70,6 @@ struct DecodedSrm {
 // Decodes what `file` holds: a prefix decodes to the best mesh its bytes
 // allow (cut inside the base mesh: the base triangles before the cut); a
 // failed checksum is an error.
-StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const DecodeOptions& options = {});
+StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const SrmDecodeOptions& options = {});
 
 }  // namespace srcodec

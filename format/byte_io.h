@@ -1,7 +1,7 @@
 // Little-endian byte writing and bounds-checked reading for the .srm file.
 // The reader never reads outside its buffer: every read reports failure
 // instead, and the caller turns that into a Status naming the field and the
-// byte offset (format/README.md).
+// byte offset (format/srm/README.md).
 #pragma once
 
 #include <cstdint>

@@ -1,6 +1,6 @@
 // CRC-32 (IEEE 802.3, reflected, polynomial 0xEDB88320) for the .srm file's
 // header and chunks; its low 16 bits serve as the short check of each
-// coefficient segment (format/README.md).
+// coefficient segment (format/srm/README.md).
 #pragma once
 
 #include <cstddef>

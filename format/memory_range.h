@@ -1,5 +1,5 @@
 // A range of memory, as format/prefault.h takes it: apart so that classes
-// that only hand their arrays' ranges out (remesh/hierarchy.h) do not pull
+// that only hand their arrays' ranges out (format/semi_regular/hierarchy.h) do not pull
 // in the prefault thread's headers.
 #pragma once
 

@@ -16,8 +16,8 @@
 #include <filesystem>
 #include <string>
 
-#include "format/mesh_clean.h"
-#include "format/mesh_io.h"
+#include "format/mesh_files/mesh_clean.h"
+#include "format/mesh_files/mesh_io.h"
 
 namespace {
 

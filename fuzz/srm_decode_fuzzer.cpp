@@ -11,7 +11,7 @@
 #include <cstdint>
 
 #include "codec/srm_codec.h"
-#include "format/srm_file.h"
+#include "format/srm/srm_file.h"
 
 namespace {
 
@@ -46,7 +46,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   srcodec::StatusOr<srcodec::SrmFile> file = srcodec::parse_srm(data, present, read);
   if (!file.ok()) return 0;
 
-  srcodec::DecodeOptions options;
+  srcodec::SrmDecodeOptions options;
   options.level = level;
   options.max_vertices = kMaxVertices;
   srcodec::StatusOr<srcodec::DecodedSrm> decoded = srcodec::decode_srm(file.value(), options);

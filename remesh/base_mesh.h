@@ -11,7 +11,7 @@
 
 #include "format/mesh.h"
 #include "format/status.h"
-#include "remesh/param.h"
+#include "format/semi_regular/param.h"
 
 namespace srcodec {
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "remesh/geometry.h"
+#include "remesh/levels_to_move.h"
 #include "remesh/nearest_triangle.h"
 
 namespace srcodec {

@@ -14,7 +14,7 @@
 #include "format/mesh.h"
 #include "format/status.h"
 #include "remesh/base_mesh.h"
-#include "remesh/hierarchy.h"
+#include "format/semi_regular/hierarchy.h"
 
 namespace srcodec {
 

@@ -10,6 +10,7 @@
 #include "remesh/boundary_tips.h"
 #include "remesh/components.h"
 #include "remesh/geometry.h"
+#include "remesh/levels_to_move.h"
 #include "remesh/lbg_sites.h"
 
 namespace srcodec {

@@ -18,7 +18,7 @@
 #include "remesh/measured_coarsening.h"
 #include "remesh/oversample.h"
 #include "remesh/refine.h"
-#include "remesh/semi_regular_mesh.h"
+#include "format/semi_regular/semi_regular_mesh.h"
 
 namespace srcodec {
 

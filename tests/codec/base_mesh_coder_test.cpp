@@ -10,8 +10,8 @@
 #include <random>
 #include <set>
 
-#include "format/mesh_io.h"
-#include "remesh/hierarchy.h"
+#include "format/mesh_files/mesh_io.h"
+#include "format/semi_regular/hierarchy.h"
 #include "tests/test_util.h"
 
 namespace srcodec {

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "codec/srm_codec.h"
-#include "format/mesh_io.h"
+#include "format/mesh_files/mesh_io.h"
 #include "tests/test_util.h"
 
 namespace srcodec {
@@ -20,7 +20,7 @@ void expect_golden(int version, uint64_t size, int raw_planes) {
   EXPECT_EQ(file->header.input_vertices, 2930u);
   EXPECT_EQ(file->file_size, size);
   for (int level = 0; level <= 2; ++level) {
-    DecodeOptions options;
+    SrmDecodeOptions options;
     options.level = level;
     StatusOr<DecodedSrm> decoded = decode_srm(file.value(), options);
     ASSERT_TRUE(decoded.ok()) << decoded.status().message();

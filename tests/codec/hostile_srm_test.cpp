@@ -31,7 +31,7 @@ bool try_decode(const std::vector<uint8_t>& bytes, int level = -1) {
   read.max_level = level;
   StatusOr<SrmFile> f = parse_srm(bytes.data(), bytes.size(), read);
   if (f.ok()) {
-    DecodeOptions options;
+    SrmDecodeOptions options;
     options.level = level;
     options.max_vertices = 200000;
     StatusOr<DecodedSrm> d = decode_srm(f.value(), options);

@@ -54,7 +54,7 @@ StatusOr<DecodedSrm> decode_bytes(const std::vector<uint8_t>& bytes, uint64_t pr
   read.max_bytes = prefix;
   read.max_level = level;
   SRCODEC_ASSIGN_OR_RETURN(SrmFile f, parse_srm(bytes.data(), bytes.size(), read));
-  DecodeOptions options;
+  SrmDecodeOptions options;
   options.level = level;
   return decode_srm(f, options);
 }
@@ -105,7 +105,7 @@ TEST(SrmCodec, FullStreamReconstructsEveryLevelsConnectivityAndTheFinestPosition
 // `raw_planes`: the encoder's (0: version 1).
 void check_every_prefix(int raw_planes) {
   const Case c = make_case(4, true, 3);
-  EncodeOptions options;
+  SrmEncodeOptions options;
   options.raw_planes = raw_planes;
   const EncodedSrm e = encode_srm(c.srm, c.input, options).value();
   ASSERT_EQ(e.bytes[4], raw_planes > 0 ? 2 : 1);
@@ -146,7 +146,7 @@ void check_every_prefix(int raw_planes) {
 }
 
 TEST(SrmCodec, EveryPrefixFromTheHeaderOnDecodesAndDistortionDoesNotGrow) {
-  check_every_prefix(EncodeOptions{}.raw_planes);
+  check_every_prefix(SrmEncodeOptions{}.raw_planes);
 }
 
 TEST(SrmCodec, EveryPrefixOfAVersion1FileDecodesAndDistortionDoesNotGrow) { check_every_prefix(0); }
@@ -155,7 +155,7 @@ TEST(SrmCodec, EveryPrefixOfAVersion1FileDecodesAndDistortionDoesNotGrow) { chec
 // stream decodes to exactly the mesh of version 1's; so do cuts above them.
 TEST(SrmCodec, RawPlanesDecodeToTheVersion1Mesh) {
   const Case c = make_case(4, false, 6);
-  EncodeOptions v1_options;
+  SrmEncodeOptions v1_options;
   v1_options.raw_planes = 0;
   const EncodedSrm v1 = encode_srm(c.srm, c.input, v1_options).value();
   EXPECT_EQ(v1.bytes[4], 1);
@@ -163,7 +163,7 @@ TEST(SrmCodec, RawPlanesDecodeToTheVersion1Mesh) {
   const SrmFile f1 = parse_srm(v1.bytes.data(), v1.bytes.size()).value();
   const DecodedSrm d1 = decode_bytes(v1.bytes).value();
   for (int raw : {1, 2, 3}) {
-    EncodeOptions options;
+    SrmEncodeOptions options;
     options.raw_planes = raw;
     const EncodedSrm v2 = encode_srm(c.srm, c.input, options).value();
     EXPECT_EQ(v2.bytes[4], 2);
@@ -205,7 +205,7 @@ TEST(SrmCodec, ThreadsDoNotChangeTheMesh) {
       read.max_bytes = prefix;
       read.max_level = level;
       const SrmFile f = parse_srm(bytes.data(), bytes.size(), read).value();
-      DecodeOptions options;
+      SrmDecodeOptions options;
       options.level = level;
       options.threads = threads;
       return decode_srm(f, options).value();
@@ -325,7 +325,7 @@ TEST(SrmCodec, HostileChunksWithValidChecksumsAreSafe) {
     const std::vector<uint8_t> file = write_srm(whole.header, base, flags, segments);
     StatusOr<SrmFile> parsed = parse_srm(file.data(), file.size());
     ASSERT_TRUE(parsed.ok()) << parsed.status().message();
-    DecodeOptions options;
+    SrmDecodeOptions options;
     options.max_vertices = 20000;
     StatusOr<DecodedSrm> d = decode_srm(parsed.value(), options);
     if (d.ok()) {

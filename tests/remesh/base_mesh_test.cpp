@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "format/mesh_io.h"
+#include "format/mesh_files/mesh_io.h"
 #include "remesh/components.h"
 #include "remesh/lbg_sites.h"
 #include "tests/test_util.h"

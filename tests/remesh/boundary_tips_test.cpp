@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "format/mesh_clean.h"
+#include "format/mesh_files/mesh_clean.h"
 #include "remesh/lbg_sites.h"
 #include "tests/test_util.h"
 

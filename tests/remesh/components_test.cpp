@@ -8,9 +8,9 @@
 #include <iostream>
 #include <map>
 
-#include "format/mesh_clean.h"
-#include "format/mesh_io.h"
-#include "format/mesh_stats.h"
+#include "format/mesh_files/mesh_clean.h"
+#include "format/mesh_files/mesh_io.h"
+#include "format/mesh_files/mesh_stats.h"
 #include "tests/test_util.h"
 
 // OpenMesh's points default-construct uninitialised on purpose; GCC 12 warns

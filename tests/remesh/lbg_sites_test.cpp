@@ -8,7 +8,7 @@
 #include <set>
 #include <vector>
 
-#include "format/mesh_io.h"
+#include "format/mesh_files/mesh_io.h"
 #include "remesh/density.h"
 #include "tests/test_util.h"
 

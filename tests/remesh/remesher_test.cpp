@@ -12,9 +12,9 @@
 #include <string>
 #include <utility>
 
-#include "format/mesh_clean.h"
-#include "format/mesh_io.h"
-#include "format/mesh_stats.h"
+#include "format/mesh_files/mesh_clean.h"
+#include "format/mesh_files/mesh_io.h"
+#include "format/mesh_files/mesh_stats.h"
 #include "remesh/components.h"
 #include "remesh/measured_coarsening.h"
 #include "remesh/oversample.h"

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "format/mesh_io.h"
+#include "format/mesh_files/mesh_io.h"
 #include "tests/test_util.h"
 
 namespace srcodec {

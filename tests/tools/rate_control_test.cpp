@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "codec/srm_codec.h"
-#include "format/mesh_io.h"
+#include "format/mesh_files/mesh_io.h"
 #include "remesh/remesher.h"
 #include "tests/test_util.h"
 

@@ -31,7 +31,7 @@
 #include <vector>
 
 #include "codec/srm_codec.h"
-#include "format/mesh_io.h"
+#include "format/mesh_files/mesh_io.h"
 #include "remesh/remesher.h"
 #include "tools/measure/draco_baseline.h"
 #include "tools/measure/rate_control.h"

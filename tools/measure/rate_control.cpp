@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "codec/srm_codec.h"
-#include "format/srm_file.h"
+#include "format/srm/srm_file.h"
 #include "tools/measure/surface_distance.h"
 
 namespace srcodec {

@@ -3,7 +3,7 @@
 #include <iostream>
 #include <memory>
 
-#include "format/mesh_io.h"
+#include "format/mesh_files/mesh_io.h"
 #include "tools/measure/surface_distance.h"
 #include "tools/srcodec/commands.h"
 #include "tools/srcodec/json_writer.h"

@@ -7,7 +7,7 @@
 
 #include "codec/srm_codec.h"
 #include "format/file_io.h"
-#include "format/mesh_io.h"
+#include "format/mesh_files/mesh_io.h"
 #include "tools/srcodec/commands.h"
 #include "tools/srcodec/json_writer.h"
 
@@ -32,7 +32,7 @@ Status run_decode(const DecodeCliOptions& o) {
   if (o.level > file.header.levels)
     return invalid_argument("--level " + std::to_string(o.level) + ": " + o.input + " has levels 0.." +
                             std::to_string(file.header.levels));
-  DecodeOptions options;
+  SrmDecodeOptions options;
   options.level = o.level;
   options.max_vertices = o.max_vertices;
   options.threads = !o.single_thread;

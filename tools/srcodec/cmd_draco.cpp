@@ -4,8 +4,8 @@
 #include <memory>
 
 #include "format/file_io.h"
-#include "format/mesh_io.h"
-#include "format/mesh_stats.h"
+#include "format/mesh_files/mesh_io.h"
+#include "format/mesh_files/mesh_stats.h"
 #include "tools/measure/draco_baseline.h"
 #include "tools/srcodec/commands.h"
 #include "tools/srcodec/json_writer.h"

@@ -9,7 +9,7 @@
 
 #include "codec/srm_codec.h"
 #include "format/file_io.h"
-#include "format/mesh_io.h"
+#include "format/mesh_files/mesh_io.h"
 #include "tools/measure/rate_control.h"
 #include "tools/measure/surface_distance.h"
 #include "tools/srcodec/commands.h"
@@ -26,7 +26,7 @@ struct EncodeCliOptions {
   uint64_t bytes = 0;
   double tangential_factor = 4.0;
   int base_bits = 10;
-  int raw_planes = EncodeOptions{}.raw_planes;
+  int raw_planes = SrmEncodeOptions{}.raw_planes;
   size_t samples = 200000;
   bool json = false, quiet = false;
 };
@@ -43,7 +43,7 @@ Status run_encode(const EncodeCliOptions& o) {
   RemeshReport remesh_report;
   SRCODEC_ASSIGN_OR_RETURN(SemiRegularMesh srm, remesh(input, remesh_options, &remesh_report));
   const double remesh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  EncodeOptions encode_options;
+  SrmEncodeOptions encode_options;
   encode_options.tangential_factor = o.tangential_factor;
   encode_options.base_bits = o.base_bits;
   encode_options.raw_planes = o.raw_planes;

@@ -5,8 +5,8 @@
 #include <iostream>
 #include <memory>
 
-#include "format/mesh_io.h"
-#include "format/mesh_stats.h"
+#include "format/mesh_files/mesh_io.h"
+#include "format/mesh_files/mesh_stats.h"
 #include "tools/srcodec/commands.h"
 #include "tools/srcodec/json_writer.h"
 

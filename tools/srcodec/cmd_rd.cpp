@@ -21,7 +21,7 @@
 
 #include "codec/srm_codec.h"
 #include "format/file_io.h"
-#include "format/mesh_io.h"
+#include "format/mesh_files/mesh_io.h"
 #include "tools/measure/bd_rate.h"
 #include "tools/measure/draco_baseline.h"
 #include "tools/measure/surface_distance.h"

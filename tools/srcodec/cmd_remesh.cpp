@@ -9,7 +9,7 @@
 #include <utility>
 
 #include "format/file_io.h"
-#include "format/mesh_io.h"
+#include "format/mesh_files/mesh_io.h"
 #include "remesh/remesher.h"
 #include "tools/measure/surface_distance.h"
 #include "tools/srcodec/commands.h"

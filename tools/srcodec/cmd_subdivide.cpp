@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <memory>
 
-#include "format/mesh_io.h"
+#include "format/mesh_files/mesh_io.h"
 #include "remesh/components.h"
 #include "remesh/oversample.h"
 #include "tools/srcodec/commands.h"

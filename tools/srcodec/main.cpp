@@ -11,13 +11,21 @@ int main(int argc, char** argv) {
 
   const std::vector<srcodec::Command> commands = {
       srcodec::add_info_command(app),
+#if SRCODEC_WITH_MEASURE
       srcodec::add_compare_command(app),
       srcodec::add_draco_command(app),
       srcodec::add_remesh_command(app),
+#endif
+#if SRCODEC_WITH_ENCODER
       srcodec::add_subdivide_command(app),
+#endif
+#if SRCODEC_WITH_MEASURE
       srcodec::add_encode_command(app),
+#endif
       srcodec::add_decode_command(app),
+#if SRCODEC_WITH_MEASURE
       srcodec::add_rd_command(app),
+#endif
   };
 
   try {

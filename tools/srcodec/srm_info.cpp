@@ -4,7 +4,7 @@
 #include <iostream>
 #include <vector>
 
-#include "format/srm_file.h"
+#include "format/srm/srm_file.h"
 #include "tools/srcodec/commands.h"
 #include "tools/srcodec/json_writer.h"
 

@@ -1,4 +1,4 @@
-#include "format/stl_reader.h"
+#include "format/mesh_files/stl_reader.h"
 
 #include <array>
 #include <cctype>
@@ -9,7 +9,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "format/text_numbers.h"
+#include "format/mesh_files/text_numbers.h"
 
 namespace srcodec {
 namespace {

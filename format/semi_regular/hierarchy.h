@@ -16,7 +16,7 @@
 
 #include "format/memory_range.h"
 #include "format/status.h"
-#include "remesh/param.h"
+#include "format/semi_regular/param.h"
 
 namespace srcodec {
 

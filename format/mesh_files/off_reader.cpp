@@ -1,4 +1,4 @@
-#include "format/off_reader.h"
+#include "format/mesh_files/off_reader.h"
 
 #include <cmath>
 #include <cstdlib>

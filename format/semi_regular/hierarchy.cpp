@@ -20,7 +20,7 @@
 //    e is its parent's same-level neighbour across the parent's edge e.
 //  - Closure: no leaf has two or more split same-level neighbours, so every
 //    leaf of every level mesh has at most one hanging vertex, of the next level.
-#include "remesh/hierarchy.h"
+#include "format/semi_regular/hierarchy.h"
 
 #include <algorithm>
 #include <cassert>

@@ -1,4 +1,4 @@
-#include "format/mesh_stats.h"
+#include "format/mesh_files/mesh_stats.h"
 
 #include <algorithm>
 #include <unordered_map>

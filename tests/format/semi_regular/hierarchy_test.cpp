@@ -1,4 +1,4 @@
-#include "remesh/hierarchy.h"
+#include "format/semi_regular/hierarchy.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "format/mesh_io.h"
+#include "format/mesh_files/mesh_io.h"
 
 #include <gtest/gtest.h>
 

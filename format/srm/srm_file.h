@@ -1,4 +1,4 @@
-// The .srm container, versions 1 and 2 (byte layout: format/README.md): a header
+// The .srm container, versions 1 and 2 (byte layout: format/srm/README.md): a header
 // with counts, bounding box, quantization and the table of every chunk's
 // length and checksum, then the base mesh chunk, one refinement-flag chunk per
 // level, and the coefficient segments in embedded order (bit-plane major,

@@ -1,8 +1,8 @@
-#include "format/mesh_stats.h"
+#include "format/mesh_files/mesh_stats.h"
 
 #include <gtest/gtest.h>
 
-#include "format/mesh_io.h"
+#include "format/mesh_files/mesh_io.h"
 #include "tests/test_util.h"
 
 namespace srcodec {

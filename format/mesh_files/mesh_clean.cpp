@@ -1,4 +1,4 @@
-#include "format/mesh_clean.h"
+#include "format/mesh_files/mesh_clean.h"
 
 #include <algorithm>
 #include <numeric>

@@ -1,5 +1,5 @@
 // Mesh files in and out. Reading uses our own parsers, one per format
-// (format/obj_reader.h, off_reader.h, ply_reader.h, stl_reader.h): OpenMesh's
+// (format/mesh_files/obj_reader.h, off_reader.h, ply_reader.h, stl_reader.h): OpenMesh's
 // crashed, hung or aborted on damaged files in our fuzzing (fuzz/). They fill
 // a raw PolygonMesh, checked for what would make later stages misbehave:
 // missing or empty files, unknown formats, indices out of range, non-finite
@@ -9,7 +9,7 @@
 #include <string>
 
 #include "format/mesh.h"
-#include "format/mesh_clean.h"
+#include "format/mesh_files/mesh_clean.h"
 #include "format/status.h"
 
 namespace srcodec {

@@ -1,4 +1,4 @@
-#include "format/ply_reader.h"
+#include "format/mesh_files/ply_reader.h"
 
 #include <algorithm>
 #include <cstring>

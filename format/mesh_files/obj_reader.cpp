@@ -1,11 +1,11 @@
-#include "format/obj_reader.h"
+#include "format/mesh_files/obj_reader.h"
 
 #include <cstdint>
 #include <limits>
 #include <string_view>
 #include <vector>
 
-#include "format/text_numbers.h"
+#include "format/mesh_files/text_numbers.h"
 
 namespace srcodec {
 namespace {

@@ -1,4 +1,4 @@
-#include "format/mesh_io.h"
+#include "format/mesh_files/mesh_io.h"
 
 #include <algorithm>
 #include <cctype>
@@ -12,11 +12,11 @@
 #include <system_error>
 
 #include "format/file_io.h"
-#include "format/obj_reader.h"
-#include "format/off_reader.h"
-#include "format/ply_reader.h"
-#include "format/stl_reader.h"
-#include "format/text_numbers.h"
+#include "format/mesh_files/obj_reader.h"
+#include "format/mesh_files/off_reader.h"
+#include "format/mesh_files/ply_reader.h"
+#include "format/mesh_files/stl_reader.h"
+#include "format/mesh_files/text_numbers.h"
 
 namespace srcodec {
 namespace {

@@ -1,4 +1,4 @@
-#include "format/srm_file.h"
+#include "format/srm/srm_file.h"
 
 #include <cmath>
 #include <fstream>

@@ -1,11 +1,11 @@
-#include "format/mesh_clean.h"
+#include "format/mesh_files/mesh_clean.h"
 
 #include <gtest/gtest.h>
 
 #include <set>
 
-#include "format/mesh_io.h"
-#include "format/mesh_stats.h"
+#include "format/mesh_files/mesh_io.h"
+#include "format/mesh_files/mesh_stats.h"
 #include "tests/test_util.h"
 
 namespace srcodec {

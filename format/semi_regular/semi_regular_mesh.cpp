@@ -1,9 +1,6 @@
-#include "remesh/semi_regular_mesh.h"
+#include "format/semi_regular/semi_regular_mesh.h"
 
-#include <algorithm>
 #include <cstddef>
-
-#include "remesh/geometry.h"
 
 namespace srcodec {
 
@@ -28,16 +25,6 @@ TriangleMesh compact_mesh(const std::vector<Eigen::Vector3d>& positions,
   mesh.triangles.reserve(triangles.size());
   for (const auto& t : triangles) mesh.triangles.push_back({index[t[0]], index[t[1]], index[t[2]]});
   return mesh;
-}
-
-LevelsToMove levels_to_move(const TriangleHierarchy& hierarchy, int32_t levels, size_t base_vertices,
-                            size_t vertices) {
-  LevelsToMove out;
-  for (int32_t l = 0; l <= levels; ++l) out.triangles.push_back(hierarchy.level_triangles(l));
-  out.fixed = boundary_vertices(vertices, out.triangles.back());
-  for (size_t b = 0; b < base_vertices && b < vertices; ++b)
-    out.fixed[b] = out.fixed[b] ? LevelsToMove::kFixed : LevelsToMove::kOnInputVertices;
-  return out;
 }
 
 }  // namespace srcodec

@@ -1,4 +1,4 @@
-#include "format/text_numbers.h"
+#include "format/mesh_files/text_numbers.h"
 
 #include <charconv>
 #include <cmath>

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "format/mesh.h"
-#include "remesh/hierarchy.h"
+#include "format/semi_regular/hierarchy.h"
 
 namespace srcodec {
 
@@ -38,20 +38,5 @@ struct SemiRegularMesh {
 // in increasing id order, and the triangles re-indexed to them.
 TriangleMesh compact_mesh(const std::vector<Eigen::Vector3d>& positions,
                           const std::vector<std::array<int32_t, 3>>& triangles);
-
-// Each level's triangles (levels 0 to `levels` of `hierarchy`), and the
-// vertices the fit, the untangling and the coarsening's refit leave where
-// they are (`fixed` nonzero): the base vertices (ids below `base_vertices`:
-// the paper's sites, input vertices) and the boundary vertices of the finest
-// level (on the input's boundary), among `vertices`. The base vertices off
-// the boundary are kOnInputVertices: the untangling may move them onto other
-// input vertices (remesh/untangle.h), the rest keep them where they are.
-struct LevelsToMove {
-  static constexpr char kFixed = 1, kOnInputVertices = 2;
-  std::vector<std::vector<std::array<int32_t, 3>>> triangles;
-  std::vector<char> fixed;
-};
-LevelsToMove levels_to_move(const TriangleHierarchy& hierarchy, int32_t levels, size_t base_vertices,
-                            size_t vertices);
 
 }  // namespace srcodec
