@@ -277,8 +277,8 @@ StatusOr<SrmFile> read_srm(const std::string& path, const SrmReadOptions& option
   return f;
 }
 
-StatusOr<std::vector<uint8_t>> truncate_srm(const std::vector<uint8_t>& file, uint64_t segment_bytes) {
-  SRCODEC_ASSIGN_OR_RETURN(SrmFile f, parse_srm(file.data(), file.size()));
+StatusOr<std::vector<uint8_t>> truncate_srm(const uint8_t* data, size_t size, uint64_t segment_bytes) {
+  SRCODEC_ASSIGN_OR_RETURN(SrmFile f, parse_srm(data, size));
   std::vector<std::vector<uint8_t>> flags, segments;
   if (!f.base.complete()) return invalid_argument("truncate: the file is already cut inside its base mesh");
   for (const SrmChunk& c : f.flags) {
@@ -294,6 +294,26 @@ StatusOr<std::vector<uint8_t>> truncate_srm(const std::vector<uint8_t>& file, ui
     if (take < c.declared) break;  // cut inside (or a chunk the input itself had cut)
   }
   return write_srm(f.header, f.base.bytes, flags, segments);
+}
+
+StatusOr<std::vector<uint8_t>> truncate_srm_to_size(const uint8_t* data, size_t size, uint64_t bytes) {
+  SRCODEC_ASSIGN_OR_RETURN(SrmFile f, parse_srm(data, size));
+  uint64_t lo = 0, hi = 0;
+  for (const SrmChunk& c : f.segments) hi += c.bytes.size();
+  SRCODEC_ASSIGN_OR_RETURN(std::vector<uint8_t> smallest, truncate_srm(data, size, 0));
+  if (smallest.size() > bytes)
+    return invalid_argument(std::to_string(bytes) + " bytes cannot hold the file's header, base mesh and refinement "
+                            "flags, which take " + std::to_string(smallest.size()));
+  while (lo < hi) {
+    const uint64_t mid = lo + (hi - lo + 1) / 2;
+    SRCODEC_ASSIGN_OR_RETURN(std::vector<uint8_t> file, truncate_srm(data, size, mid));
+    if (file.size() <= bytes) {
+      lo = mid;
+    } else {
+      hi = mid - 1;
+    }
+  }
+  return truncate_srm(data, size, lo);
 }
 
 Status verify_chunk(const SrmChunk& chunk, bool short_crc, const std::string& what) {

@@ -102,7 +102,16 @@ std::vector<uint8_t> write_srm(SrmHeader header, const std::vector<uint8_t>& bas
 // segments (the last one cut short where the count ends inside it), and a
 // table that lists just those: what rate control writes. Decodes like the
 // whole file's prefix with as many segment bytes.
-StatusOr<std::vector<uint8_t>> truncate_srm(const std::vector<uint8_t>& file, uint64_t segment_bytes);
+StatusOr<std::vector<uint8_t>> truncate_srm(const uint8_t* data, size_t size, uint64_t segment_bytes);
+inline StatusOr<std::vector<uint8_t>> truncate_srm(const std::vector<uint8_t>& file, uint64_t segment_bytes) {
+  return truncate_srm(file.data(), file.size(), segment_bytes);
+}
+
+// The largest file truncate_srm makes of at most `bytes` bytes: its table
+// shrinks with the segments it lists, so the segment bytes that fit are
+// searched for, not subtracted. An error when even the header, base mesh
+// and flags alone take more.
+StatusOr<std::vector<uint8_t>> truncate_srm_to_size(const uint8_t* data, size_t size, uint64_t bytes);
 
 // Which chunks to load: those levels <= max_level need (-1: all), from the
 // first `max_bytes` bytes only (0: all).
