@@ -3,7 +3,7 @@
 // triangle mesh connectivity"; in the Edgebreaker / Touma-Gotsman family),
 // positions on a uniform grid predicted across the traversal's gate edge
 // (parallelogram rule, Touma & Gotsman 1998), all coded by an adaptive binary
-// arithmetic coder. See base_mesh_coder.cpp for the scheme and the stream.
+// arithmetic coder. See base_mesh_model.h for the scheme and the stream.
 #pragma once
 
 #include <Eigen/Core>

@@ -1,7 +1,7 @@
 // Embedded bit-plane coding of quantized wavelet coefficients over zerotrees
 // (EZW / SPIHT style significance, refinement and descendant passes), one
 // arithmetic-coded segment per (plane, level) so that a stream cut anywhere,
-// or truncated to the coarse levels, still decodes. See bitplane.cpp.
+// or truncated to the coarse levels, still decodes. The scheme: bitplane_model.h.
 #pragma once
 
 #include <cstddef>
@@ -45,7 +45,7 @@ struct BitplaneStream {
 // `q`: per node, coefficient quantized in units of the finest step
 // (dead zone: q = sign * floor(|c| / step)). `raw_planes`: the segments of
 // planes below it hold raw bits instead of arithmetic-coded symbols (see
-// bitplane.cpp); 0 writes the layout of .srm version 1. Preconditions
+// bitplane_model.h); 0 writes the layout of .srm version 1. Preconditions
 // (asserted): validate_forest(forest).ok(), q.size() == nodes,
 // q != INT32_MIN, 0 <= raw_planes <= kMaxBitplane + 1.
 BitplaneStream encode_bitplanes(const CoefficientForest& forest, const std::vector<int32_t>& q, int raw_planes = 0);
@@ -91,7 +91,7 @@ struct BitplaneDecodeStats {
 //
 // kAuto decodes the finest level on a second thread, one plane behind the
 // coarser levels, when it is the forest's last level and large enough to pay
-// for the thread (see bitplane.cpp); kSequential never does, kPipelined does
+// for the thread (see bitplane_decode.cpp); kSequential never does, kPipelined does
 // whenever it can (for tests). All three give the same values and stats.
 enum class BitplaneThreads { kAuto, kSequential, kPipelined };
 
@@ -157,7 +157,7 @@ class BitplaneValues {
 // thread once every level but the last is decoded, while the last may still
 // be: `coarse` views the nodes of those levels (a prefix of the forest) with
 // their final values, unless the decode then has to start again
-// sequentially (corrupt input only; see bitplane.cpp), which
+// sequentially (corrupt input only; see bitplane_decode.cpp), which
 // BitplaneDecodeStats::coarse_done_final tells. At most once per decode;
 // never by the sequential decode.
 using CoarseLevelsDone = std::function<void(const BitplaneValueView& coarse)>;

@@ -9,7 +9,7 @@
 // Differences from LZMA's coder, for short per-segment streams:
 //  - the always-zero first byte of LZMA's stream is not written;
 //  - finish() writes only the 1 or 2 bytes that pin the final interval
-//    (LZMA writes 5), see range_coder.cpp;
+//    (LZMA writes 5), see range_encode.cpp;
 //  - the decoder knows which symbols were fully determined by real bytes
 //    (ok()), so any prefix of a stream decodes safely.
 #pragma once

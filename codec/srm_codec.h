@@ -27,7 +27,7 @@ struct SrmEncodeOptions {
   // embedded stream refines them further (the base residual, level f = 0).
   int base_bits = 10;
   // The symbols of this many lowest bit planes are written as raw bits, not
-  // arithmetic-coded (.srm version 2, codec/bitplane.cpp): they are close to
+  // arithmetic-coded (.srm version 2, codec/bitplane_model.h): they are close to
   // even there, and raw bits decode several times faster. 0 writes version 1.
   // (The cost of two planes, measured on the bunny and igea: docs/codec_speed.md,
   // fifth session.)

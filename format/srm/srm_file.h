@@ -47,7 +47,7 @@ struct SrmHeader {
   double tangential_factor = 1.0;
   int top_plane = -1;            // -1: every coefficient is zero
   // The segments of planes below this hold raw bits, not an arithmetic-coded
-  // stream (codec/bitplane.cpp). 0..31; > 0 only in version 2.
+  // stream (codec/bitplane_model.h). 0..31; > 0 only in version 2.
   int raw_planes = 0;
   SrmChunkEntry base;
   std::vector<SrmChunkEntry> flags;     // L: flags of level j's triangles decide level j + 1

@@ -480,7 +480,7 @@ void check_random(const Base& base, uint32_t seed, int splits, int32_t max_level
   EXPECT_TRUE(check_levels(h, base));
   EXPECT_TRUE(check_vertex_records(h, base));
   EXPECT_EQ(h.max_level(), max_level) << "the random splits should reach the deepest level allowed";
-  // The decoder reserves nodes by this bound (codec/srm_codec.cpp): each
+  // The decoder reserves nodes by this bound (codec/srm_decode.cpp): each
   // split makes 4 nodes and its edges' midpoints, each new vertex the
   // midpoint of at most 2 splits.
   size_t base_faces = 0;

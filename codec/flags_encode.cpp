@@ -1,53 +1,20 @@
-#include "codec/flags_coder.h"
-
+// The encoding half of the refinement-flag coder (codec/flags_coder.h): the
+// remesher's hierarchy replayed on the decoder's base mesh, flag by flag.
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <string>
 #include <unordered_map>
 
+#include "codec/flags_coder.h"
+#include "codec/flags_model.h"
 #include "codec/range_coder.h"
 
 namespace srcodec {
+
+using namespace flags_detail;
+
 namespace {
-
-constexpr int kContextLevels = 8;
-constexpr int kContextsPerLevel = 5;  // level 0: the previous flag (0, 1); finer: split earlier siblings (0..3)
-
-// Flags of triangles that share a parent are correlated (a region is refined
-// or not), so the context is how many earlier siblings were split.
-int flag_context(const TriangleHierarchy& h, int32_t node, int previous_flag) {
-  const TriangleHierarchy::Node& n = h.nodes()[node];
-  const int level = std::min<int>(n.level, kContextLevels - 1);
-  if (n.parent < 0) return level * kContextsPerLevel + previous_flag;
-  const int32_t first = h.nodes()[n.parent].first_child;
-  int split = 0;
-  for (int32_t s = first; s < node; ++s) split += h.nodes()[s].first_child >= 0;
-  return level * kContextsPerLevel + split;
-}
-
-// One pass: every leaf of level `level`, in node order (the order grows as
-// splits append nodes), gets a flag from `decide`; a node that closure split
-// before its turn gets none. `after_split` runs after each split.
-template <typename Decide, typename AfterSplit>
-Status replay_level(TriangleHierarchy& h, int32_t level, size_t max_vertices, Decide&& decide,
-                    AfterSplit&& after_split) {
-  int previous = 0;
-  for (size_t n = 0; n < h.nodes().size(); ++n) {
-    const TriangleHierarchy::Node& node = h.nodes()[n];
-    if (node.level != level || node.first_child >= 0) continue;
-    const int32_t id = static_cast<int32_t>(n);
-    int flag = 0;
-    SRCODEC_RETURN_IF_ERROR(decide(id, flag_context(h, id, previous), flag));
-    previous = flag;
-    if (!flag) continue;
-    h.split(id);
-    if (static_cast<size_t>(h.vertex_count()) > max_vertices)
-      return parse_error("level " + std::to_string(level + 1) + " would have more than " +
-                         std::to_string(max_vertices) + " vertices");
-    after_split();
-  }
-  return ok_status();
-}
 
 uint64_t edge_key(int32_t a, int32_t b) {
   if (a > b) std::swap(a, b);
@@ -139,23 +106,6 @@ StatusOr<ReplayedHierarchy> encode_refinement(const TriangleHierarchy& original,
                           std::to_string(original.nodes().size()));
   out.to_original_vertex = link.vertices();
   return out;
-}
-
-Status decode_refinement_level(TriangleHierarchy& hierarchy, int32_t level, const uint8_t* data, size_t size,
-                               size_t max_vertices) {
-  ArithmeticDecoder dec(data, size);
-  std::vector<BitModel> models(kContextLevels * kContextsPerLevel);
-  const bool all = dec.decode_raw(1) != 0;
-  const std::string where = "flags of level " + std::to_string(level);
-  if (!dec.ok()) return parse_error(where + ": the chunk is empty");
-  Status status = replay_level(
-      hierarchy, level, max_vertices,
-      [&](int32_t, int ctx, int& flag) {
-        flag = all ? 1 : dec.decode(models[ctx]);
-        return dec.ok() ? ok_status() : parse_error(where + ": the chunk ends before its last flag");
-      },
-      [] {});
-  return status;
 }
 
 }  // namespace srcodec

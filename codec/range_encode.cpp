@@ -15,19 +15,15 @@
 // end could add to its code register. A 0 decision (code < bound) is
 // determined only if code + slack < bound; a 1 decision (code >= bound) always
 // is, since the unknown bytes only add. The same for raw bits.
-#include "codec/range_coder.h"
-
 #include <cassert>
 
+#include "codec/range_coder.h"
+
 namespace srcodec {
-namespace {
 
 using range_coder_detail::kModelBits;
 using range_coder_detail::kTopValue;
 using range_coder_detail::update;
-constexpr uint64_t kMaxSlack = 1ull << 40;  // saturation; anything >= 2^32 decides nothing
-
-}  // namespace
 
 void ArithmeticEncoder::put_byte(uint8_t b) {
   if (!dropped_first_) {  // LZMA's leading byte: always 0, carry never reaches it
@@ -96,34 +92,6 @@ std::vector<uint8_t> ArithmeticEncoder::finish() {
   for (int i = 0; i <= k; ++i) shift_low();  // k bytes of V, then flush the cache
   symbols_ = 0;
   return std::move(out_);
-}
-
-ArithmeticDecoder::ArithmeticDecoder(const uint8_t* data, size_t size)
-    : data_(data), size_(data == nullptr ? 0 : size) {
-  for (int i = 0; i < 4; ++i) code_ = (code_ << 8) | next_byte();
-}
-
-uint8_t ArithmeticDecoder::missing_byte() {
-  slack_ = slack_ >= kMaxSlack ? kMaxSlack : (slack_ << 8) | 0xFFu;
-  return 0;
-}
-
-uint32_t ArithmeticDecoder::decode_raw(int bits) {
-  assert(bits >= 0 && bits <= 32);
-  uint32_t value = 0;
-  for (int i = 0; i < bits; ++i) {
-    range_ >>= 1;
-    uint32_t bit = 0;
-    if (code_ >= range_) {
-      code_ -= range_;
-      bit = 1;
-    } else if (slack_ != 0 && uint64_t{code_} + slack_ >= range_) {
-      ok_ = false;
-    }
-    value = (value << 1) | bit;
-    normalize();
-  }
-  return value;
 }
 
 }  // namespace srcodec
