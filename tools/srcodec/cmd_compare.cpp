@@ -56,17 +56,17 @@ Status run_compare(const CompareOptions& o) {
 
 }  // namespace
 
-Command add_compare_command(CLI::App& app) {
+Command add_compare_command(CommandLine& cli) {
   auto o = std::make_shared<CompareOptions>();
-  CLI::App* cmd = app.add_subcommand("compare", "Symmetric surface distance (RMS, Hausdorff, PSNR) between two meshes");
-  cmd->add_option("reference", o->reference, "Reference mesh (its bounding-box diagonal sets the PSNR scale)")->required();
-  cmd->add_option("test", o->test, "Mesh to measure against the reference")->required();
-  cmd->add_option("--samples", o->samples, "Area-uniform samples on each surface")
-      ->check(CLI::Range(size_t{1000}, size_t{100000000}))
-      ->capture_default_str();
-  cmd->add_option("--seed", o->seed, "Sampling seed")->capture_default_str();
-  cmd->add_flag("--json", o->json, "Print one JSON object");
-  return {cmd, [o] { return run_compare(*o); }};
+  Subcommand& cmd = cli.add_command("compare", "Symmetric surface distance (RMS, Hausdorff, PSNR) between two meshes");
+  cmd.positional("reference", o->reference, "Reference mesh (its bounding-box diagonal sets the PSNR scale)");
+  cmd.positional("test", o->test, "Mesh to measure against the reference");
+  cmd.option("--samples", o->samples, "Area-uniform samples on each surface")
+      .range(size_t{1000}, size_t{100000000})
+      .show_default();
+  cmd.option("--seed", o->seed, "Sampling seed").show_default();
+  cmd.flag("--json", o->json, "Print one JSON object");
+  return {&cmd, [o] { return run_compare(*o); }};
 }
 
 }  // namespace srcodec

@@ -70,20 +70,17 @@ Status run_decode(const DecodeCliOptions& o) {
 
 }  // namespace
 
-Command add_decode_command(CLI::App& app) {
+Command add_decode_command(CommandLine& cli) {
   auto o = std::make_shared<DecodeCliOptions>();
-  CLI::App* cmd = app.add_subcommand("decode", "Decode an .srm file to a mesh, at any level, from any prefix");
-  cmd->add_option("file", o->input, "The .srm file")->required();
-  cmd->add_option("-o,--output", o->output, "Mesh to write (OBJ, PLY, OFF, STL by extension)")->required();
-  cmd->add_option("--level", o->level, "Level to decode: 0 is the base mesh (default: the finest)")
-      ->check(CLI::Range(0, 12));
-  cmd->add_option("--bytes", o->bytes, "Decode from the first N bytes only")->check(CLI::PositiveNumber);
-  cmd->add_option("--max-vertices", o->max_vertices, "Refuse files that decode to more vertices than this")
-      ->capture_default_str();
-  cmd->add_flag("--single-thread", o->single_thread,
-                "Decode on one thread (the same mesh; for many decodes side by side)");
-  cmd->add_flag("--json", o->json, "Print one JSON object");
-  return {cmd, [o] { return run_decode(*o); }};
+  Subcommand& cmd = cli.add_command("decode", "Decode an .srm file to a mesh, at any level, from any prefix");
+  cmd.positional("file", o->input, "The .srm file");
+  cmd.option("-o,--output", o->output, "Mesh to write (OBJ, PLY, OFF, STL by extension)").required();
+  cmd.option("--level", o->level, "Level to decode: 0 is the base mesh (default: the finest)").range(0, 12);
+  cmd.option("--bytes", o->bytes, "Decode from the first N bytes only").positive();
+  cmd.option("--max-vertices", o->max_vertices, "Refuse files that decode to more vertices than this").show_default();
+  cmd.flag("--single-thread", o->single_thread, "Decode on one thread (the same mesh; for many decodes side by side)");
+  cmd.flag("--json", o->json, "Print one JSON object");
+  return {&cmd, [o] { return run_decode(*o); }};
 }
 
 }  // namespace srcodec

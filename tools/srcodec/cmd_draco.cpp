@@ -56,20 +56,16 @@ Status run_draco(const DracoCommandOptions& o) {
 
 }  // namespace
 
-Command add_draco_command(CLI::App& app) {
+Command add_draco_command(CommandLine& cli) {
   auto o = std::make_shared<DracoCommandOptions>();
-  CLI::App* cmd = app.add_subcommand("draco", "Encode and decode a mesh with Draco (the baseline)");
-  cmd->add_option("mesh", o->mesh, "Mesh file")->required();
-  cmd->add_option("--qp", o->draco.quantization_bits, "Position quantization bits")
-      ->check(CLI::Range(1, 30))
-      ->required();
-  cmd->add_option("--cl", o->draco.compression_level, "Compression level 0..10")
-      ->check(CLI::Range(0, 10))
-      ->capture_default_str();
-  cmd->add_option("-o,--output", o->encoded_path, "Write the .drc bytes here");
-  cmd->add_option("--decoded", o->decoded_path, "Write Draco's decoded mesh here (.obj or .ply)");
-  cmd->add_flag("--json", o->json, "Print one JSON object");
-  return {cmd, [o] { return run_draco(*o); }};
+  Subcommand& cmd = cli.add_command("draco", "Encode and decode a mesh with Draco (the baseline)");
+  cmd.positional("mesh", o->mesh, "Mesh file");
+  cmd.option("--qp", o->draco.quantization_bits, "Position quantization bits").range(1, 30).required();
+  cmd.option("--cl", o->draco.compression_level, "Compression level 0..10").range(0, 10).show_default();
+  cmd.option("-o,--output", o->encoded_path, "Write the .drc bytes here");
+  cmd.option("--decoded", o->decoded_path, "Write Draco's decoded mesh here (.obj or .ply)");
+  cmd.flag("--json", o->json, "Print one JSON object");
+  return {&cmd, [o] { return run_draco(*o); }};
 }
 
 }  // namespace srcodec

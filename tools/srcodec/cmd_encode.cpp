@@ -131,43 +131,39 @@ Status run_encode(const EncodeCliOptions& o) {
 
 }  // namespace
 
-Command add_encode_command(CLI::App& app) {
+Command add_encode_command(CommandLine& cli) {
   auto o = std::make_shared<EncodeCliOptions>();
-  CLI::App* cmd = app.add_subcommand(
+  Subcommand& cmd = cli.add_command(
       "encode",
       "Remesh and compress a mesh into a progressive .srm file; with no rate option it keeps the knee of the "
       "stream's rate-distortion curve (README: The default rate)");
-  cmd->add_option("mesh", o->input, "Input mesh (OBJ, PLY, OFF, STL)")->required();
-  cmd->add_option("-o,--output", o->output, "The .srm file to write")->required();
+  cmd.positional("mesh", o->input, "Input mesh (OBJ, PLY, OFF, STL)");
+  cmd.option("-o,--output", o->output, "The .srm file to write").required();
   add_remesh_flags(cmd, o->remesh, /*for_coding=*/true);
-  auto* bpv = cmd->add_option("--bpv", o->bpv, "Rate: bits per input vertex")
-                  ->check(kFiniteNumber)
-                  ->check(CLI::PositiveNumber);
-  auto* bytes = cmd->add_option("--bytes", o->bytes, "Rate: file size in bytes")->check(CLI::PositiveNumber);
-  auto* psnr = cmd->add_option("--psnr", o->psnr, "Rate: the smallest file reaching this PSNR (dB) against the input")
-                   ->check(kFiniteNumber)
-                   ->check(CLI::PositiveNumber);
-  bpv->excludes(bytes)->excludes(psnr);
-  bytes->excludes(psnr);
-  cmd->add_option("--tangential-factor", o->tangential_factor,
-                  "Quantizer step of tangential detail components relative to normal ones")
-      ->check(kFiniteNumber)
-      ->check(CLI::Range(0.25, 64.0))
-      ->capture_default_str();
-  cmd->add_option("--base-bits", o->base_bits, "Bits per coordinate of the base mesh grid")
-      ->check(CLI::Range(4, 24))
-      ->capture_default_str();
-  cmd->add_option("--raw-planes", o->raw_planes,
-                  "The symbols of this many lowest bit planes are stored as raw bits (faster decoding, "
-                  "slightly larger); 0 writes .srm version 1")
-      ->check(CLI::Range(0, kSrmMaxPlane + 1))
-      ->capture_default_str();
-  cmd->add_option("--samples", o->samples, "Samples per surface for the PSNR figures")
-      ->check(CLI::Range(size_t{1000}, size_t{100000000}))
-      ->capture_default_str();
-  cmd->add_flag("--json", o->json, "Print one JSON object");
-  cmd->add_flag("-q,--quiet", o->quiet, "No progress lines on stderr");
-  return {cmd, [o] { return run_encode(*o); }};
+  auto& bpv = cmd.option("--bpv", o->bpv, "Rate: bits per input vertex").finite().positive();
+  auto& bytes = cmd.option("--bytes", o->bytes, "Rate: file size in bytes").positive();
+  auto& psnr = cmd.option("--psnr", o->psnr, "Rate: the smallest file reaching this PSNR (dB) against the input")
+                   .finite()
+                   .positive();
+  bpv.excludes(bytes).excludes(psnr);
+  bytes.excludes(psnr);
+  cmd.option("--tangential-factor", o->tangential_factor,
+             "Quantizer step of tangential detail components relative to normal ones")
+      .finite()
+      .range(0.25, 64.0)
+      .show_default();
+  cmd.option("--base-bits", o->base_bits, "Bits per coordinate of the base mesh grid").range(4, 24).show_default();
+  cmd.option("--raw-planes", o->raw_planes,
+             "The symbols of this many lowest bit planes are stored as raw bits (faster decoding, "
+             "slightly larger); 0 writes .srm version 1")
+      .range(0, kSrmMaxPlane + 1)
+      .show_default();
+  cmd.option("--samples", o->samples, "Samples per surface for the PSNR figures")
+      .range(size_t{1000}, size_t{100000000})
+      .show_default();
+  cmd.flag("--json", o->json, "Print one JSON object");
+  cmd.flag("-q,--quiet", o->quiet, "No progress lines on stderr");
+  return {&cmd, [o] { return run_encode(*o); }};
 }
 
 }  // namespace srcodec

@@ -110,12 +110,12 @@ Status run_info(const InfoOptions& o) {
 
 }  // namespace
 
-Command add_info_command(CLI::App& app) {
+Command add_info_command(CommandLine& cli) {
   auto options = std::make_shared<InfoOptions>();
-  CLI::App* cmd = app.add_subcommand("info", "Print a mesh's size, topology and defects (as read and after cleaning), or an .srm file's header and byte budget");
-  cmd->add_option("mesh", options->path, "Mesh file (.obj .off .ply .stl) or .srm file")->required();
-  cmd->add_flag("--json", options->json, "Print one JSON object instead of a table");
-  return {cmd, [options] { return run_info(*options); }};
+  Subcommand& cmd = cli.add_command("info", "Print a mesh's size, topology and defects (as read and after cleaning), or an .srm file's header and byte budget");
+  cmd.positional("mesh", options->path, "Mesh file (.obj .off .ply .stl) or .srm file");
+  cmd.flag("--json", options->json, "Print one JSON object instead of a table");
+  return {&cmd, [options] { return run_info(*options); }};
 }
 
 }  // namespace srcodec

@@ -487,26 +487,26 @@ Status run_rd(const RdCliOptions& o) {
 
 }  // namespace
 
-Command add_rd_command(CLI::App& app) {
+Command add_rd_command(CommandLine& cli) {
   auto o = std::make_shared<RdCliOptions>();
-  CLI::App* cmd = app.add_subcommand("rd", "Rate-distortion curves of srcodec and Draco on one mesh, with BD-rate");
-  cmd->add_option("mesh", o->input, "Input mesh (OBJ, PLY, OFF, STL)")->required();
-  cmd->add_option("-o,--output", o->out_dir, "Folder for rd.csv, rd.png and summary.json (created if missing)")
-      ->required();
+  Subcommand& cmd = cli.add_command("rd", "Rate-distortion curves of srcodec and Draco on one mesh, with BD-rate");
+  cmd.positional("mesh", o->input, "Input mesh (OBJ, PLY, OFF, STL)");
+  cmd.option("-o,--output", o->out_dir, "Folder for rd.csv, rd.png and summary.json (created if missing)").required();
   add_remesh_flags(cmd, o->remesh, /*for_coding=*/true);
-  cmd->add_option("--points", o->points, "srcodec rates, log-spaced from the base mesh alone to the whole stream")
-      ->check(CLI::Range(2, 100))
-      ->capture_default_str();
-  cmd->add_option("--samples", o->samples, "Samples per surface for every distance figure (seeded)")
-      ->check(CLI::Range(size_t{1000}, size_t{100000000}))
-      ->capture_default_str();
-  cmd->add_option("--cut", o->cut,
-                  "srcodec files: truncate (as `encode --bytes` writes them) or prefix (the whole stream's first bytes)")
-      ->capture_default_str();
-  cmd->add_flag("--json", o->json, "Print the summary as one JSON object");
-  cmd->add_flag("-q,--quiet", o->quiet, "No progress lines on stderr");
-  cmd->add_flag("--no-plot", o->no_plot, "Do not call tools/rd_plot.py");
-  return {cmd, [o] { return run_rd(*o); }};
+  cmd.option("--points", o->points, "srcodec rates, log-spaced from the base mesh alone to the whole stream")
+      .range(2, 100)
+      .show_default();
+  cmd.option("--samples", o->samples, "Samples per surface for every distance figure (seeded)")
+      .range(size_t{1000}, size_t{100000000})
+      .show_default();
+  cmd.option("--cut", o->cut,
+             "srcodec files: truncate (as `encode --bytes` writes them) or prefix (the whole stream's first bytes)")
+      .one_of({"truncate", "prefix"})
+      .show_default();
+  cmd.flag("--json", o->json, "Print the summary as one JSON object");
+  cmd.flag("-q,--quiet", o->quiet, "No progress lines on stderr");
+  cmd.flag("--no-plot", o->no_plot, "Do not call tools/rd_plot.py");
+  return {&cmd, [o] { return run_rd(*o); }};
 }
 
 }  // namespace srcodec

@@ -202,20 +202,20 @@ Status run_remesh(const RemeshCliOptions& o) {
 
 }  // namespace
 
-Command add_remesh_command(CLI::App& app) {
+Command add_remesh_command(CommandLine& cli) {
   auto o = std::make_shared<RemeshCliOptions>();
-  CLI::App* cmd = app.add_subcommand(
+  Subcommand& cmd = cli.add_command(
       "remesh", "Adaptive semi-regular remeshing (Voronoi/Lloyd, Kammoun-Payan-Antonini) with per-level error");
-  cmd->add_option("mesh", o->input, "Input mesh (OBJ, PLY, OFF, STL)")->required();
-  cmd->add_option("-o,--output", o->output, "Finest level, written as OBJ or PLY")->required();
+  cmd.positional("mesh", o->input, "Input mesh (OBJ, PLY, OFF, STL)");
+  cmd.option("-o,--output", o->output, "Finest level, written as OBJ or PLY").required();
   add_remesh_flags(cmd, o->remesh);
-  cmd->add_option("--write-levels", o->write_levels, "Also write every level to PREFIX_l<level>.obj");
-  cmd->add_option("--samples", o->samples, "Samples per surface for the error figures")
-      ->check(CLI::Range(size_t{1000}, size_t{100000000}))
-      ->capture_default_str();
-  cmd->add_flag("--json", o->json, "Print one JSON object");
-  cmd->add_flag("-q,--quiet", o->quiet, "No progress lines on stderr");
-  return {cmd, [o] { return run_remesh(*o); }};
+  cmd.option("--write-levels", o->write_levels, "Also write every level to PREFIX_l<level>.obj");
+  cmd.option("--samples", o->samples, "Samples per surface for the error figures")
+      .range(size_t{1000}, size_t{100000000})
+      .show_default();
+  cmd.flag("--json", o->json, "Print one JSON object");
+  cmd.flag("-q,--quiet", o->quiet, "No progress lines on stderr");
+  return {&cmd, [o] { return run_remesh(*o); }};
 }
 
 }  // namespace srcodec

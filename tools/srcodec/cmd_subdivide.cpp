@@ -35,14 +35,14 @@ Status run_subdivide(const SubdivideOptions& o) {
 
 }  // namespace
 
-Command add_subdivide_command(CLI::App& app) {
+Command add_subdivide_command(CommandLine& cli) {
   auto o = std::make_shared<SubdivideOptions>();
-  CLI::App* cmd = app.add_subcommand("subdivide", "Butterfly, Loop or linear subdivision of every component");
-  cmd->add_option("mesh", o->input, "Input mesh (OBJ, PLY, OFF, STL)")->required();
-  cmd->add_option("-o,--output", o->output, "Output mesh (OBJ or PLY)")->required();
-  cmd->add_option("--scheme", o->scheme, "butterfly, loop or linear")->capture_default_str();
-  cmd->add_option("--steps", o->steps, "1-to-4 steps")->check(CLI::Range(1, 3))->capture_default_str();
-  return {cmd, [o] { return run_subdivide(*o); }};
+  Subcommand& cmd = cli.add_command("subdivide", "Butterfly, Loop or linear subdivision of every component");
+  cmd.positional("mesh", o->input, "Input mesh (OBJ, PLY, OFF, STL)");
+  cmd.option("-o,--output", o->output, "Output mesh (OBJ or PLY)").required();
+  cmd.option("--scheme", o->scheme, "butterfly, loop or linear").show_default();
+  cmd.option("--steps", o->steps, "1-to-4 steps").range(1, 3).show_default();
+  return {&cmd, [o] { return run_subdivide(*o); }};
 }
 
 }  // namespace srcodec

@@ -5,40 +5,36 @@
 #include "tools/srcodec/commands.h"
 
 int main(int argc, char** argv) {
-  CLI::App app{"srcodec: wavelet mesh compression on adaptive semi-regular remeshes"};
-  app.require_subcommand(1);
-  app.set_version_flag("--version", std::string("srcodec 0.1.0"));
+  srcodec::CommandLine cli("srcodec", "srcodec: wavelet mesh compression on adaptive semi-regular remeshes",
+                           "srcodec 0.1.0");
 
   const std::vector<srcodec::Command> commands = {
-      srcodec::add_info_command(app),
+      srcodec::add_info_command(cli),
 #if SRCODEC_WITH_MEASURE
-      srcodec::add_compare_command(app),
-      srcodec::add_draco_command(app),
-      srcodec::add_remesh_command(app),
+      srcodec::add_compare_command(cli),
+      srcodec::add_draco_command(cli),
+      srcodec::add_remesh_command(cli),
 #endif
 #if SRCODEC_WITH_ENCODER
-      srcodec::add_subdivide_command(app),
+      srcodec::add_subdivide_command(cli),
 #endif
 #if SRCODEC_WITH_MEASURE
-      srcodec::add_encode_command(app),
+      srcodec::add_encode_command(cli),
 #endif
-      srcodec::add_decode_command(app),
+      srcodec::add_decode_command(cli),
 #if SRCODEC_WITH_MEASURE
-      srcodec::add_rd_command(app),
+      srcodec::add_rd_command(cli),
 #endif
   };
 
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  }
+  const srcodec::ParseResult parsed = cli.parse(argc, argv);
+  if (parsed.command == nullptr) return parsed.exit_code;  // help, version, or a usage error already printed
   try {
     for (const auto& command : commands) {
-      if (!command.app->parsed()) continue;
+      if (command.cli != parsed.command) continue;
       const srcodec::Status status = command.run();
       if (!status.ok()) {
-        std::cerr << "srcodec " << command.app->get_name() << ": error: " << status.message() << "\n";
+        std::cerr << "srcodec " << command.cli->name() << ": error: " << status.message() << "\n";
         return 1;
       }
     }

@@ -2,91 +2,91 @@
 
 #include <algorithm>
 
-#include "tools/srcodec/commands.h"
-
 namespace srcodec {
 
-void add_remesh_flags(CLI::App* cmd, RemeshFlags& f, bool for_coding) {
-  f.levels_option = cmd->add_option("--levels", f.levels,
-                                    "Refinement levels above the base mesh (without this option: fewer for "
-                                    "inputs too small for 4, none below 100 vertices)")
-                        ->check(CLI::Range(0, 12))
-                        ->capture_default_str();
-  cmd->add_option("--base-vertices", f.base_vertices,
-                  "Base mesh vertices (default: from the input size and levels, 100..4000; up to a quarter more "
-                  "where cells wrap around thin parts; see docs/remesh_design.md)");
-  auto* threshold = cmd->add_option("--threshold", f.threshold,
-                                    "Adaptive: keep a triangle's split only when each corner's Voronoi cell holds "
-                                    "more than this many (oversampled) input vertices (Eq. 5); judged on a uniform "
-                                    "refinement where the input is dense enough for one, else level by level");
-  threshold->check(kFiniteNumber)->check(CLI::NonNegativeNumber);
-  cmd->add_flag("--uniform", f.uniform, "Split every triangle (the default without --threshold)")->excludes(threshold);
-  auto* tolerance = cmd->add_option("--tolerance", f.tolerance_db,
-                                    "Adaptive by geometry: after the last level, undo a triangle's split where the "
-                                    "input's RMS distance to it is within this PSNR in dB (bounding-box diagonal x "
-                                    "10^(-dB/20)); with --uniform or --threshold");
-  tolerance->check(kFiniteNumber)->check(CLI::Range(1.0, 300.0));
-  auto* max_loss = cmd->add_option("--max-loss", f.max_loss_db,
-                  "Adaptive by measured error: refine uniformly and fit, then undo the last level's splits that "
-                  "gain least (error measured both ways against the input) while the estimated PSNR stays within "
-                  "this many dB of the full refinement's; the unsplit triangles' corners are fitted again, and "
-                  "more splits undone while the result stays within it; e.g. 0.5")
-      ->check(kFiniteNumber)
-      ->check(CLI::Range(0.01, 60.0))
-      ->excludes(threshold)
-      ->excludes(tolerance);
-  cmd->add_option("--deepen", f.deepen_fraction,
-                  "With --max-loss: first split once more this fraction of the finest level's triangles, those "
-                  "holding the most error, then judge the loss against the levels asked and undo the splits of "
-                  "both last levels that gain least: the output has one level more than --levels where that pays; "
-                  "e.g. 0.06")
-      ->check(kFiniteNumber)
-      ->check(CLI::Range(0.0, 1.0))
-      ->needs(max_loss);
-  cmd->add_flag("!--no-fit-surface", f.fit_surface,
-                "Leave every vertex where the remeshing put it (on the input's vertices, as in the paper): by "
-                "default the vertices above the base mesh then move along their normals to centre the finest "
-                "level's triangles on the input surface (boundary vertices stay)");
-  cmd->add_flag("!--no-untangle", f.untangle,
-                "After the fit, leave the vertices of triangles still folded or in a pleat where they are: by "
-                "default each moves to the nearby place that leaves fewest of them around it, on every level");
+void add_remesh_flags(Subcommand& cmd, RemeshFlags& f, bool for_coding) {
+  f.levels_option = &cmd.option("--levels", f.levels,
+                                "Refinement levels above the base mesh (without this option: fewer for "
+                                "inputs too small for 4, none below 100 vertices)")
+                         .range(0, 12)
+                         .show_default();
+  cmd.option("--base-vertices", f.base_vertices,
+             "Base mesh vertices (default: from the input size and levels, 100..4000; up to a quarter more "
+             "where cells wrap around thin parts; see docs/remesh_design.md)");
+  auto& threshold = cmd.option("--threshold", f.threshold,
+                               "Adaptive: keep a triangle's split only when each corner's Voronoi cell holds "
+                               "more than this many (oversampled) input vertices (Eq. 5); judged on a uniform "
+                               "refinement where the input is dense enough for one, else level by level")
+                        .finite()
+                        .non_negative();
+  cmd.flag("--uniform", f.uniform, "Split every triangle (the default without --threshold)").excludes(threshold);
+  auto& tolerance = cmd.option("--tolerance", f.tolerance_db,
+                               "Adaptive by geometry: after the last level, undo a triangle's split where the "
+                               "input's RMS distance to it is within this PSNR in dB (bounding-box diagonal x "
+                               "10^(-dB/20)); with --uniform or --threshold")
+                        .finite()
+                        .range(1.0, 300.0);
+  auto& max_loss =
+      cmd.option("--max-loss", f.max_loss_db,
+                 "Adaptive by measured error: refine uniformly and fit, then undo the last level's splits that "
+                 "gain least (error measured both ways against the input) while the estimated PSNR stays within "
+                 "this many dB of the full refinement's; the unsplit triangles' corners are fitted again, and "
+                 "more splits undone while the result stays within it; e.g. 0.5")
+          .finite()
+          .range(0.01, 60.0)
+          .excludes(threshold)
+          .excludes(tolerance);
+  cmd.option("--deepen", f.deepen_fraction,
+             "With --max-loss: first split once more this fraction of the finest level's triangles, those "
+             "holding the most error, then judge the loss against the levels asked and undo the splits of "
+             "both last levels that gain least: the output has one level more than --levels where that pays; "
+             "e.g. 0.06")
+      .finite()
+      .range(0.0, 1.0)
+      .needs(max_loss);
+  cmd.negated_flag("--no-fit-surface", f.fit_surface,
+                   "Leave every vertex where the remeshing put it (on the input's vertices, as in the paper): by "
+                   "default the vertices above the base mesh then move along their normals to centre the finest "
+                   "level's triangles on the input surface (boundary vertices stay)");
+  cmd.negated_flag("--no-untangle", f.untangle,
+                   "After the fit, leave the vertices of triangles still folded or in a pleat where they are: by "
+                   "default each moves to the nearby place that leaves fewest of them around it, on every level");
   if (for_coding) {
     // Off for coding: an adaptive last level costs its refinement flags in
     // every prefix of the file (388 bytes on beast) and the top of the
     // curve (docs/remesh_design.md, "Unsplitting").
     f.unsplit_tangles = false;
-    cmd->add_flag("--unsplit-tangles", f.unsplit_tangles,
-                  "After the untangling, where triangles stay folded or in a pleat, leave the level below the "
-                  "finest whole around one of their corners and untangle again, while that leaves fewer such "
-                  "triangles (as remesh does by default; costs bytes: see docs/remesh_design.md)");
+    cmd.flag("--unsplit-tangles", f.unsplit_tangles,
+             "After the untangling, where triangles stay folded or in a pleat, leave the level below the "
+             "finest whole around one of their corners and untangle again, while that leaves fewer such "
+             "triangles (as remesh does by default; costs bytes: see docs/remesh_design.md)");
   } else {
-    cmd->add_flag("!--keep-tangled-splits", f.unsplit_tangles,
-                  "After the untangling, keep every split of the level below the finest: by default, where "
-                  "triangles stay folded or in a pleat, that level's triangles around one of their corners are "
-                  "left whole (where their children do not reach out more than twice their edges) and the "
-                  "untangling runs again, while that leaves fewer such triangles");
+    cmd.negated_flag("--keep-tangled-splits", f.unsplit_tangles,
+                     "After the untangling, keep every split of the level below the finest: by default, where "
+                     "triangles stay folded or in a pleat, that level's triangles around one of their corners are "
+                     "left whole (where their children do not reach out more than twice their edges) and the "
+                     "untangling runs again, while that leaves fewer such triangles");
   }
-  cmd->add_flag("--follow-detours", f.follow_detours,
-                "Where the input between an edge's ends runs far off the edge (a pocket, a crease, a gap "
-                "narrower than an edge: its path along the input more than 1.6 times the edge), put the edge's "
-                "new vertex in the middle of that path and keep Lloyd from making such edges, instead of "
-                "bridging the gap; helps meshes with narrow gaps (the bunny at 5 levels), costs meshes made of "
-                "thin flaps (beast)");
-  cmd->add_flag("!--no-relax-slivers", f.relax_slivers,
-                "Leave the finest level's slivers as they are: by default, last, each vertex of the finest level "
-                "alone at a triangle of quality below 0.5 moves along its tangent plane toward its neighbours' "
-                "mean where that makes the triangles around it rounder and folds none (fewer triangles turn "
-                "over after coding; off with --no-fit-surface)");
-  cmd->add_option("--oversample", f.oversample, "Subdivision steps before remeshing: auto, 0, 1, 2 or 3")
-      ->capture_default_str();
-  cmd->add_option("--scheme", f.scheme, "Oversampling scheme: butterfly, loop, or linear (keeps the input's facets)")
-      ->capture_default_str();
+  cmd.flag("--follow-detours", f.follow_detours,
+           "Where the input between an edge's ends runs far off the edge (a pocket, a crease, a gap "
+           "narrower than an edge: its path along the input more than 1.6 times the edge), put the edge's "
+           "new vertex in the middle of that path and keep Lloyd from making such edges, instead of "
+           "bridging the gap; helps meshes with narrow gaps (the bunny at 5 levels), costs meshes made of "
+           "thin flaps (beast)");
+  cmd.negated_flag("--no-relax-slivers", f.relax_slivers,
+                   "Leave the finest level's slivers as they are: by default, last, each vertex of the finest level "
+                   "alone at a triangle of quality below 0.5 moves along its tangent plane toward its neighbours' "
+                   "mean where that makes the triangles around it rounder and folds none (fewer triangles turn "
+                   "over after coding; off with --no-fit-surface)");
+  cmd.option("--oversample", f.oversample, "Subdivision steps before remeshing: auto, 0, 1, 2 or 3").show_default();
+  cmd.option("--scheme", f.scheme, "Oversampling scheme: butterfly, loop, or linear (keeps the input's facets)")
+      .show_default();
 }
 
 StatusOr<RemeshOptions> to_remesh_options(const RemeshFlags& o) {
   RemeshOptions r;
   r.levels = o.levels;
-  r.fit_levels = o.levels_option == nullptr || o.levels_option->count() == 0;
+  r.fit_levels = o.levels_option == nullptr || !o.levels_option->given();
   r.base_vertices = o.base_vertices;
   if (o.uniform && o.threshold >= 0.0)
     return invalid_argument("--uniform and --threshold exclude each other (uniform is threshold 0 with every "

@@ -1,12 +1,11 @@
 // The remesh options shared by `remesh` and `encode`.
 #pragma once
 
-#include <CLI/CLI.hpp>
-
 #include <string>
 
 #include "format/status.h"
 #include "remesh/remesher.h"
+#include "tools/srcodec/command_line.h"
 
 namespace srcodec {
 
@@ -26,7 +25,7 @@ struct RemeshFlags {
   bool relax_slivers = true;
   // Set by add_remesh_flags: without --levels, `levels` is fitted to small
   // inputs (RemeshOptions::fit_levels).
-  const CLI::Option* levels_option = nullptr;
+  const Option* levels_option = nullptr;
 };
 
 // Adds --levels, --base-vertices, --threshold, --uniform, --tolerance, --max-loss, --deepen, --no-fit-surface,
@@ -35,7 +34,7 @@ struct RemeshFlags {
 // With `for_coding` (encode, rd) the unsplitting is off unless
 // --unsplit-tangles asks for it; remesh has it on, --keep-tangled-splits
 // turns it off.
-void add_remesh_flags(CLI::App* cmd, RemeshFlags& flags, bool for_coding = false);
+void add_remesh_flags(Subcommand& cmd, RemeshFlags& flags, bool for_coding = false);
 StatusOr<RemeshOptions> to_remesh_options(const RemeshFlags& flags);
 
 }  // namespace srcodec
