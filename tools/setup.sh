@@ -9,9 +9,9 @@ cd "$(dirname "$0")/.."
 
 packages=(
   cmake make g++ pkg-config
-  libopenmesh-dev libeigen3-dev libnanoflann-dev libzstd-dev
+  libopenmesh-dev libeigen3-dev libnanoflann-dev
   libdraco-dev draco libcgal-dev libtbb-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
+  libgtest-dev libbenchmark-dev
   python3 python3-numpy python3-scipy python3-matplotlib
   clang libclang-rt-14-dev
 )
