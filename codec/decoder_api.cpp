@@ -25,10 +25,10 @@ Status check_bytes(const uint8_t* data, size_t size) {
 
 Status check_options(const DecodeOptions& o) {
   if (o.level < -1 || o.level > kSrmMaxLevels)
-    return invalid_argument("level " + std::to_string(o.level) + ": use -1 (the finest) or 0 .. " +
+    return invalid_argument("level " + std::to_string(o.level) + ": use -1 (the finest) or 0.." +
                             std::to_string(kSrmMaxLevels));
   if (o.max_vertices < 1 || o.max_vertices > kMaxVerticesLimit)
-    return invalid_argument("max_vertices " + std::to_string(o.max_vertices) + ": use 1 .. " +
+    return invalid_argument("max_vertices " + std::to_string(o.max_vertices) + ": use 1.." +
                             std::to_string(kMaxVerticesLimit));
   return ok_status();
 }
@@ -45,7 +45,7 @@ StatusOr<Decoded> decode(const uint8_t* data, size_t size, const DecodeOptions& 
   read.max_bytes = options.max_bytes;
   SRCODEC_ASSIGN_OR_RETURN(const SrmFile file, parse_srm(data, size, read));
   if (options.level > file.header.levels)
-    return invalid_argument("level " + std::to_string(options.level) + ": the file has levels 0 .. " +
+    return invalid_argument("level " + std::to_string(options.level) + ": the file has levels 0.." +
                             std::to_string(file.header.levels));
   SrmDecodeOptions decode_options;
   decode_options.level = options.level;

@@ -104,7 +104,7 @@ TEST(DecoderApi, BadCallsGiveAStatus) {
   beyond.level = 9;
   StatusOr<Decoded> high = decode(file.data(), file.size(), beyond);
   ASSERT_FALSE(high.ok());
-  EXPECT_NE(high.status().message().find("levels 0 .. 4"), std::string::npos) << high.status().message();
+  EXPECT_NE(high.status().message().find("levels 0..4"), std::string::npos) << high.status().message();
   beyond.level = -2;
   EXPECT_EQ(decode(file.data(), file.size(), beyond).status().code(), StatusCode::kInvalidArgument);
   beyond.level = 13;

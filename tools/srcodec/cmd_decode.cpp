@@ -1,13 +1,16 @@
 // `srcodec decode IN.srm -o OUT.obj [--level L] [--bytes N]`: the mesh of
-// level L from the whole file or from its first N bytes.
+// level L from the whole file or from its first N bytes, through the public
+// decoder (<srcodec/decoder.h>).
 #include <cstdio>
 #include <iostream>
 #include <memory>
 #include <string>
 
-#include "codec/srm_codec.h"
+#include <srcodec/decoder.h>
+
+#include <algorithm>
+
 #include "format/file_io.h"
-#include "format/mesh_files/mesh_io.h"
 #include "tools/srcodec/commands.h"
 #include "tools/srcodec/json_writer.h"
 
@@ -25,42 +28,40 @@ struct DecodeCliOptions {
 
 Status run_decode(const DecodeCliOptions& o) {
   SRCODEC_RETURN_IF_ERROR(check_output_path(o.output));
-  SrmReadOptions read;
-  read.max_level = o.level;
-  read.max_bytes = o.bytes;
-  SRCODEC_ASSIGN_OR_RETURN(SrmFile file, read_srm(o.input, read));
-  if (o.level > file.header.levels)
-    return invalid_argument("--level " + std::to_string(o.level) + ": " + o.input + " has levels 0.." +
-                            std::to_string(file.header.levels));
-  SrmDecodeOptions options;
+  SRCODEC_ASSIGN_OR_RETURN(const std::string bytes, read_file_bytes(o.input));
+  const auto* data = reinterpret_cast<const uint8_t*>(bytes.data());
+  DecodeOptions options;
   options.level = o.level;
+  options.max_bytes = o.bytes;
   options.max_vertices = o.max_vertices;
   options.threads = !o.single_thread;
-  StatusOr<DecodedSrm> decoded = decode_srm(file, options);
+  StatusOr<Decoded> decoded = decode(data, bytes.size(), options);
   if (!decoded.ok()) return decoded.status().with_context(o.input);
-  SRCODEC_RETURN_IF_ERROR(write_mesh(decoded->mesh, o.output));
+  SRCODEC_ASSIGN_OR_RETURN(const FileInfo info, inspect(data, bytes.size()));
+  SRCODEC_RETURN_IF_ERROR(write_mesh(o.output, decoded->mesh));
+  const uint64_t present = o.bytes > 0 ? std::min<uint64_t>(o.bytes, bytes.size()) : bytes.size();
   if (o.json) {
     JsonWriter j;
     j.field("input", o.input)
         .field("output", o.output)
         .field("level", decoded->level)
-        .field("levels", file.header.levels)
-        .field("vertices", decoded->mesh.positions.size())
-        .field("triangles", decoded->mesh.triangles.size())
-        .field("last_complete_plane", decoded->last_plane)
+        .field("levels", info.levels)
+        .field("vertices", decoded->mesh.vertex_count())
+        .field("triangles", decoded->mesh.triangle_count())
+        .field("last_complete_plane", decoded->last_complete_plane)
         .field("base_cut", decoded->base_cut)
         .field("bytes_used", static_cast<size_t>(decoded->bytes_used))
-        .field("bytes_present", static_cast<size_t>(file.file_size))
-        .field("file_bytes", static_cast<size_t>(file.declared_size));
+        .field("bytes_present", static_cast<size_t>(present))
+        .field("file_bytes", static_cast<size_t>(info.declared_bytes));
     std::cout << j.str() << "\n";
   } else {
     std::printf("%s: level %d of %d, %zu vertices, %zu triangles, from %llu of %llu bytes -> %s\n", o.input.c_str(),
-                decoded->level, file.header.levels, decoded->mesh.positions.size(), decoded->mesh.triangles.size(),
+                decoded->level, info.levels, decoded->mesh.vertex_count(), decoded->mesh.triangle_count(),
                 static_cast<unsigned long long>(decoded->bytes_used),
-                static_cast<unsigned long long>(file.declared_size), o.output.c_str());
+                static_cast<unsigned long long>(info.declared_bytes), o.output.c_str());
     if (decoded->base_cut)
       std::printf("  the file was cut inside its base mesh: %zu of its %llu triangles decoded\n",
-                  decoded->mesh.triangles.size(), static_cast<unsigned long long>(file.header.base_triangles));
+                  decoded->mesh.triangle_count(), static_cast<unsigned long long>(info.base_triangles));
     else if (o.level >= 0 && decoded->level < o.level)
       std::printf("  the file was cut inside the refinement flags of level %d: decoded level %d instead\n",
                   decoded->level, decoded->level);
