@@ -133,9 +133,9 @@ def main():
     for version in (1, 2):
         with open(os.path.join(source, "tests", "data", "golden_v%d.srm" % version), "rb") as f:
             golden = f.read()
-        # (level byte, prefix byte): whole file at the finest level; level 0 with
-        # only its chunks loaded; level 2 from the first half, cut and by max_bytes.
-        for name, level, prefix in [("whole", 0, 0), ("level0_only", 0x80 | 1, 0),
+        # (level byte, prefix byte): whole file at the finest level; level 0, then
+        # inspect and truncate; level 2 from the first half, cut and by max_bytes.
+        for name, level, prefix in [("whole", 0, 0), ("level0_inspect_truncate", 0x80 | 1, 0),
                                     ("level2_half_cut", 3, 64), ("level2_half_max_bytes", 3, 0x80 | 64)]:
             write(os.path.join(srm_dir, "golden_v%d_" % version + name), bytes([level, prefix]) + golden)
 

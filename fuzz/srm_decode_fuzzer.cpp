@@ -1,17 +1,16 @@
-// libFuzzer target: the input is an .srm file read the way `srcodec decode`
-// reads one (parse_srm, then decode_srm), behind two option bytes.
-//   byte 0: decode level, -1..3 (byte % 5 - 1); with bit 7 set, parse_srm
-//           also loads only the chunks that level needs (SrmReadOptions.max_level).
+// libFuzzer target: the input is an .srm file handed to the public decoder
+// (<srcodec/decoder.h>: decode, inspect, truncate) behind two option bytes.
+//   byte 0: decode level, -1..3 (byte % 5 - 1); with bit 7 set, also
+//           inspect() and truncate() to half the bytes.
 //   byte 1: prefix: 0 the whole file; otherwise the first (byte & 0x7f)/127
 //           of it, given as a shorter buffer (bit 7 clear) or as
-//           SrmReadOptions.max_bytes over the whole buffer (bit 7 set).
-// A parse or decode error is a correct answer; the sanitizers and libFuzzer's
-// limits catch crashes, undefined behaviour, leaks, hangs and huge allocations.
+//           DecodeOptions::max_bytes over the whole buffer (bit 7 set).
+// An error Status is a correct answer; the sanitizers and libFuzzer's limits
+// catch crashes, undefined behaviour, leaks, hangs and huge allocations.
+#include <srcodec/decoder.h>
+
 #include <cstddef>
 #include <cstdint>
-
-#include "codec/srm_codec.h"
-#include "format/srm/srm_file.h"
 
 namespace {
 
@@ -28,37 +27,33 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   data += 2;
   size -= 2;
 
-  const int level = level_byte % 5 - 1;
-  srcodec::SrmReadOptions read;
-  if (level_byte & 0x80) read.max_level = level;
-
+  srcodec::DecodeOptions options;
+  options.level = level_byte % 5 - 1;
+  options.max_vertices = kMaxVertices;
   size_t present = size;
   const unsigned fraction = prefix_byte & 0x7f;
   if (fraction != 0) {
     const uint64_t cut = static_cast<uint64_t>(size) * fraction / 127;
     if (prefix_byte & 0x80) {
-      read.max_bytes = cut == 0 ? 1 : cut;  // 0 would mean "all"
+      options.max_bytes = cut == 0 ? 1 : cut;  // 0 would mean "all"
     } else {
       present = static_cast<size_t>(cut);
     }
   }
 
-  srcodec::StatusOr<srcodec::SrmFile> file = srcodec::parse_srm(data, present, read);
-  if (!file.ok()) return 0;
-
-  srcodec::SrmDecodeOptions options;
-  options.level = level;
-  options.max_vertices = kMaxVertices;
-  srcodec::StatusOr<srcodec::DecodedSrm> decoded = srcodec::decode_srm(file.value(), options);
+  srcodec::StatusOr<srcodec::Decoded> decoded = srcodec::decode(data, present, options);
   if (decoded.ok()) {
     // Every triangle must index a decoded vertex: a bad index here is a
     // decoder bug that would crash whoever uses the mesh.
-    const auto n = static_cast<int64_t>(decoded->mesh.positions.size());
-    for (const auto& t : decoded->mesh.triangles) {
-      for (int k = 0; k < 3; ++k) {
-        if (t[k] < 0 || t[k] >= n) __builtin_trap();
-      }
+    const uint64_t n = decoded->mesh.vertex_count();
+    for (uint32_t v : decoded->mesh.triangles) {
+      if (v >= n) __builtin_trap();
     }
+    if (decoded->bytes_used > present) __builtin_trap();
+  }
+  if (level_byte & 0x80) {
+    (void)srcodec::inspect(data, present);
+    (void)srcodec::truncate(data, present, present / 2);
   }
   return 0;
 }
