@@ -14,7 +14,6 @@ The whole corpus takes long (each mesh is remeshed once and measured ~21 times).
 
 import argparse
 import csv
-import datetime
 import glob
 import json
 import os
@@ -108,7 +107,7 @@ def median_line(results):
 
 def write_report(path, results, invocation, rd_args):
     out = ["# srcodec against Draco: rate-distortion", "",
-           f"Made by `{invocation}` on {datetime.date.today().isoformat()}; `srcodec rd` options: "
+           f"Made by `{invocation}`; `srcodec rd` options: "
            f"`{' '.join(rd_args) or '(defaults)'}`. Rate: whole-file bytes, bits per vertex of the input mesh "
            "(as read and cleaned); distortion: symmetric surface distance, PSNR = 20 log10(bbox diagonal / RMS). "
            "Draco: `-cl 10`, 6..16 quantization bits. BD-rate < 0: srcodec needs fewer bytes for the same PSNR, "
