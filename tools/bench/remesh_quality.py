@@ -7,7 +7,7 @@ geometric tolerances (--tolerance, within 2 dB of uniform L5's PSNR) and
 measured losses (--max-loss); the finest level's PSNR against the input, its triangle count, wall time and peak
 memory (from /usr/bin/time). Prints a Markdown table.
 
-usage: /usr/bin/python3 tools/bench/remesh_quality.py [MESH ...] > docs/remesh_quality.md
+usage: /usr/bin/python3 tools/bench/remesh_quality.py [MESH ...] > OUT.md
        THRESHOLDS= TOLERANCE_OFFSETS=-2,-1 NO_HEADER=1 .../remesh_quality.py igea.ply   (rows only, a sweep)
        THRESHOLDS= TOLERANCE_OFFSETS= MAX_LOSSES=0.5,0.7 NO_HEADER=1 .../remesh_quality.py   (uniform and --max-loss rows)
 """
