@@ -17,6 +17,6 @@ done
 build/tools/srcodec decode out/spot.srm -o out/spot_prefix.obj --bytes 1000
 build/tools/srcodec compare data/spot.obj out/spot_l3.obj
 build/tools/srcodec compare data/spot.obj out/spot_prefix.obj
-# Draco at 8 bits, its setting nearest the default file's PSNR here (65.5 dB against 65.8, 2026-12-01).
+# Draco at 8 bits: of its settings, the one nearest the PSNR of this demo's default file.
 build/tools/srcodec draco data/spot.obj --qp 8 -o out/spot_q8.drc --decoded out/spot_q8.obj
 build/tools/srcodec compare data/spot.obj out/spot_q8.obj

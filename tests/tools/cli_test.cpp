@@ -117,9 +117,8 @@ TEST(Cli, RemeshSampleReportsEveryLevel) {
 // Folded triangles are a defect the user should see without --json: the text
 // report names them with the JSON's counts, and a clean remesh says nothing.
 // Linear oversampling of the sample leaves a pleat on a coarser level at 4
-// levels (measured 2026-12-01; at 3 levels it left 1 folded triangle and 3
-// pleats until base vertices could hop onto other input vertices), and the
-// refinement alone leaves some at 3.
+// levels, and the refinement alone (no untangling) leaves tangles at 3; both
+// checks say so when a remesher change makes that setting clean.
 TEST(Cli, RemeshTextReportNamesLeftoverFolds) {
   test::ScratchDir dir;
   const std::string in = q(test::source_path("data/bunny_npm.obj"));

@@ -20,9 +20,8 @@ from srcodec_cli import CORPUS, or_exit, psnr, run_json
 
 SAMPLES = int(os.environ.get("SAMPLES", "1000000"))
 SEEDS = int(os.environ.get("SEEDS", "3"))
-# The options the README quotes per mesh (twenty-first and twenty-second
-# sessions; the bunny 0.8 since the thirty-second, deepened 0.04 since the thirty-third): one level more where
-# the error is, and a measured loss.
+# The options chosen per mesh (docs/remesh_quality.md, "The adaptive target"):
+# one level more where the error is, and a measured loss.
 OPTIONS = {
     "stanford-bunny.obj": "--max-loss 0.8 --deepen 0.04",
     "armadillo.obj": "--max-loss 0.5 --deepen 0.06",

@@ -7,8 +7,9 @@ PSNR as encode measures them; Draco (`-cl 10`) at quantization bits 6 to 16,
 each decoded and measured with `srcodec compare`; Draco's bytes at srcodec's
 PSNR, interpolated on its curve (log bytes linear in PSNR between the two
 settings around it), and the ratio srcodec / Draco. With OLD=1, also the
-earlier default, 1 dB below the whole stream (`encode --psnr`, the whole
-stream measured by `encode --bytes`): two more remeshes per mesh. Prints a
+file 1 dB below the whole stream's PSNR (`encode --psnr`, the whole stream
+measured by `encode --bytes`), the rule the knee is compared with: two more
+remeshes per mesh. Prints a
 Markdown table.
 
 usage: /usr/bin/python3 tools/bench/default_rate.py [MESH ...]

@@ -3,13 +3,12 @@
 # (134k) and igea after two Loop steps (2.1M), at 2 levels without
 # oversampling, so every run works on its own input (the default oversampling
 # would take the 2.1M-vertex mesh to 8.6M). The base size is one vertex per
-# 64 input vertices, at most 4000: the default when this table was first made
-# (157, 2099, 4000). The default has grown since, and at 2 levels without
-# oversampling it asks for more output vertices than half the input, which
+# 64 input vertices, at most 4000: the default base size at 2 levels without
+# oversampling would ask for more output vertices than half the input, which
 # the remesher refuses. Wall time and peak memory from /usr/bin/time; the
 # error figures use 20000 samples per surface to keep the measuring out of
 # the way. Prints Markdown.
-# usage: tools/bench/remesh_scaling.sh [MESH_DIR] >> docs/remesh_quality.md
+# usage: tools/bench/remesh_scaling.sh [MESH_DIR]   (table in docs/remesh_quality.md)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 dir="${1:-../shared/data/meshes}"
