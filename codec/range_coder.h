@@ -33,7 +33,7 @@ namespace range_coder_detail {
 constexpr uint32_t kTopValue = 1u << 24;  // normalize when range drops below
 constexpr int kModelBits = 16;
 constexpr uint32_t kModelOne = 1u << kModelBits;
-constexpr int kMaxShift = 7;  // slowest adaptation: rate 1/128 (6 and 5 cost 0.3% and 1.1% in bitplane_test)
+constexpr int kMaxShift = 7;  // slowest adaptation: rate 1/128 (faster floors cost bytes: docs/codec_design.md)
 
 // Adaptation shift after `seen` symbols: about log2(seen + 2), i.e. a rate
 // near 1/(seen + 2) (a running mean) until it reaches 2^-kMaxShift.

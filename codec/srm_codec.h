@@ -29,8 +29,7 @@ struct SrmEncodeOptions {
   // The symbols of this many lowest bit planes are written as raw bits, not
   // arithmetic-coded (.srm version 2, codec/bitplane_model.h): they are close to
   // even there, and raw bits decode several times faster. 0 writes version 1.
-  // (The cost of two planes, measured on the bunny and igea: docs/codec_speed.md,
-  // fifth session.)
+  // (What two planes cost and save: docs/codec_design.md.)
   int raw_planes = 2;
 };
 

@@ -1,8 +1,8 @@
 // Prefaulting memory that is about to be written.
 //
 // The first write to each 4 KB page of fresh memory is a page fault. A decode
-// writes tens of megabytes of fresh arrays, and on the bunny's whole stream
-// the faults were a quarter of its CPU time. One madvise(MADV_POPULATE_WRITE)
+// writes tens of megabytes of fresh arrays, and the faults are a large share
+// of its CPU time (docs/codec_design.md). One madvise(MADV_POPULATE_WRITE)
 // call (Linux 5.14 and later) maps a whole range writable at once, leaving its
 // contents as they are; elsewhere, or on older kernels, it does nothing and
 // the pages fault in as they are written.

@@ -143,8 +143,8 @@ double extraordinary_weight_uncached(int32_t k, int32_t i) {
 }
 
 // The weights of valences up to kCachedValence, worked out once by the same
-// function (so the same doubles): two cosines per tap were 5% of the bunny's
-// plan build.
+// function (so the same doubles): two cosines per tap are a noticeable share
+// of the plan build (docs/codec_design.md).
 constexpr int32_t kCachedValence = 16;
 struct WeightTable {
   double w[kCachedValence + 1][kCachedValence];
