@@ -382,8 +382,8 @@ std::vector<std::array<int32_t, 3>> TriangleHierarchy::level_triangles(int32_t l
   level = std::clamp(level, 0, max_level_);
   std::vector<std::array<int32_t, 3>> out;
   if (node_of) node_of->clear();
-  // Reserved once: grown by doubling, the finest mesh was copied several
-  // times over and left pages touched for nothing (the decoder's output).
+  // Reserved once: grown by doubling, the finest mesh would be copied several
+  // times over and leave pages touched for nothing (the decoder's output).
   out.reserve(level_triangle_bound(level));
   std::vector<int32_t> stack;
   // Depth first from each base triangle (nodes 0 .. F - 1), children in

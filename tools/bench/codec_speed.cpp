@@ -140,8 +140,7 @@ int run(const std::string& path, int levels, int runs, const std::string& cache_
   for (const SrmChunk& c : whole.segments) segment_bytes += c.declared;
   const std::vector<uint8_t> tenth = truncate_srm(encoded.bytes, segment_bytes / 10).value();
   // The file `srcodec encode` writes with no rate option: the knee of the
-  // stream's rate-distortion curve (cached with the stream; ".default" held
-  // the earlier default, 1 dB below the whole stream).
+  // stream's rate-distortion curve (cached with the stream, as ".knee").
   const std::string default_cached = cache_dir.empty() ? "" : cache_path(cache_dir, path, levels, ".knee");
   std::vector<uint8_t> default_file = default_cached.empty() ? std::vector<uint8_t>{} : read_bytes(default_cached);
   if (default_file.empty()) {
