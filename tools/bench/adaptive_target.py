@@ -1,8 +1,8 @@
 #!/usr/bin/python3
-"""The issue's adaptive target, measured as the README quotes it.
+"""The issue's adaptive target, measured as docs/remesh_quality.md states it.
 
 For each smooth scan: the uniform remesh to 5 levels and an adaptive one
-(the options the README gives for that mesh, or ADAPTIVE for all), both with
+(the options OPTIONS gives for that mesh, or ADAPTIVE for all), both with
 the defaults otherwise; each measured against the input with `srcodec
 compare` at SAMPLES samples per surface (default 1M) for seeds 1 to SEEDS
 (default 3), PSNRs averaged. The target: the adaptive remesh within 0.5 dB of
