@@ -98,7 +98,7 @@ StatusOr<std::vector<uint8_t>> cut_for_psnr(const TriangleMesh& input, const std
 }
 
 double psnr_of(const TriangleMesh& input, const TriangleMesh& decoded) {
-  return surface_distance(input, decoded).value().psnr;
+  return cgal_surface_distance(input, decoded).value().psnr;
 }
 
 // Remeshes and encodes `input` (median encode time in *encode_ms), or reads

@@ -84,7 +84,7 @@ class RdRun {
   }
   // Distortion of `decoded` against the input, and the rate of `bytes`.
   Status measure(const TriangleMesh& decoded, uint64_t bytes, RdRow& row) const {
-    SRCODEC_ASSIGN_OR_RETURN(SurfaceDistance d, surface_distance(input_, decoded, metric_));
+    SRCODEC_ASSIGN_OR_RETURN(SurfaceDistance d, cgal_surface_distance(input_, decoded, metric_));
     row.bytes = bytes;
     row.bpv = 8.0 * static_cast<double>(bytes) / static_cast<double>(input_.positions.size());
     row.psnr = d.psnr;
