@@ -40,8 +40,13 @@ std::vector<char> boundary_vertices(size_t n, const std::vector<std::array<int32
   return on;
 }
 
-Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                    const Eigen::Vector3d& c) {
+namespace {
+
+// closest_on_triangle, and whether the point found is inside the triangle
+// (not on an edge or a corner).
+Eigen::Vector3d closest_and_region(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                   const Eigen::Vector3d& c, bool& inside) {
+  inside = false;
   const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
   const double d1 = ab.dot(ap), d2 = ac.dot(ap);
   if (d1 <= 0.0 && d2 <= 0.0) return a;
@@ -59,7 +64,28 @@ Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vecto
   if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
   const double denom = va + vb + vc;
   if (!(std::abs(denom) > 0.0)) return a;
+  inside = true;
   return a + ab * (vb / denom) + ac * (vc / denom);
+}
+
+}  // namespace
+
+Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                    const Eigen::Vector3d& c) {
+  bool inside = false;
+  return closest_and_region(p, a, b, c, inside);
+}
+
+double squared_distance_to_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                    const Eigen::Vector3d& c, Eigen::Vector3d& nearest) {
+  bool inside = false;
+  nearest = closest_and_region(p, a, b, c, inside);
+  if (inside) {
+    const Eigen::Vector3d n = (b - a).cross(c - a);
+    const double h = n.dot(p - a), nn = n.squaredNorm();
+    if (nn > 0.0) return h * h / nn;
+  }
+  return (nearest - p).squaredNorm();
 }
 
 Eigen::Vector3d barycentric(const Eigen::Vector3d& q, const Eigen::Vector3d& a, const Eigen::Vector3d& b,

@@ -24,6 +24,13 @@ std::vector<char> boundary_vertices(size_t n, const std::vector<std::array<int32
 Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                     const Eigen::Vector3d& c);
 
+// The squared distance from p to triangle abc, and its nearest point. Inside
+// the triangle, the distance to its plane: a point on that plane is at
+// distance exactly 0, as with CGAL's squared_distance, which the metric's
+// two searches must agree with.
+double squared_distance_to_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                    const Eigen::Vector3d& c, Eigen::Vector3d& nearest);
+
 // The barycentric coordinates of q, a point of triangle abc, in it (a
 // third each for a triangle with no area).
 Eigen::Vector3d barycentric(const Eigen::Vector3d& q, const Eigen::Vector3d& a, const Eigen::Vector3d& b,

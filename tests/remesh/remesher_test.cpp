@@ -18,7 +18,7 @@
 #include "remesh/components.h"
 #include "remesh/measured_coarsening.h"
 #include "remesh/oversample.h"
-#include "tools/measure/surface_distance.h"
+#include "remesh/surface_distance.h"
 #include "tests/test_util.h"
 
 namespace srcodec {

@@ -52,7 +52,7 @@ TEST(CodecCli, EncodeAtAByteBudgetThenDecodeEveryLevelAndPrefix) {
 }
 
 // With no rate option, encode keeps the knee of the rate-distortion curve
-// (tools/measure/rate_control.h) and says so.
+// (codec/rate_control.h) and says so.
 TEST(CodecCli, EncodeWithNoRateKeepsTheKnee) {
   test::ScratchDir dir;
   const std::string srm = dir.file("spot.srm");

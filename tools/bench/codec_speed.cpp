@@ -4,7 +4,7 @@
 //  - srcodec decode to the finest level: parse + decode_srm of the whole
 //    stream, of a file holding a tenth of its coefficient bytes and of the
 //    file `srcodec encode` writes with no rate option (the knee of the
-//    stream's rate-distortion curve, tools/measure/rate_control.h), median of
+//    stream's rate-distortion curve, codec/rate_control.h), median of
 //    runs, in output triangles per second;
 //  - Draco decode of the input mesh (cl 10, qp 11 and 14), median of runs, in
 //    output triangles per second;
@@ -12,7 +12,7 @@
 //    PSNR against the input (surface_distance with its defaults, as `srcodec
 //    compare` measures), then the shortest cut of the srcodec stream reaching
 //    that PSNR, found by `srcodec encode --psnr`'s own rate control
-//    (tools/measure/rate_control.h), and its decode timed;
+//    (codec/rate_control.h), and its decode timed;
 //  - per mesh, each srcodec decode's rate over the faster Draco decode's in
 //    this run (the figure to take medians of across runs).
 // Usage: codec_speed MESH... [--levels L] [--runs N] [--cache DIR]
@@ -30,11 +30,11 @@
 #include <string>
 #include <vector>
 
+#include "codec/rate_control.h"
 #include "codec/srm_codec.h"
 #include "format/mesh_files/mesh_io.h"
 #include "remesh/remesher.h"
 #include "tools/measure/draco_baseline.h"
-#include "tools/measure/rate_control.h"
 #include "tools/measure/surface_distance.h"
 
 namespace {
@@ -98,7 +98,7 @@ StatusOr<std::vector<uint8_t>> cut_for_psnr(const TriangleMesh& input, const std
 }
 
 double psnr_of(const TriangleMesh& input, const TriangleMesh& decoded) {
-  return surface_distance(input, decoded).value().psnr;
+  return cgal_surface_distance(input, decoded).value().psnr;
 }
 
 // Remeshes and encodes `input` (median encode time in *encode_ms), or reads

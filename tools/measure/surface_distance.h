@@ -1,48 +1,26 @@
-// Symmetric surface distance in the style of Metro (Cignoni, Rocchini,
-// Scopigno 1998) and MESH (Aspert, Santa-Cruz, Ebrahimi 2002): both surfaces
-// are sampled area-uniformly, each sample's exact distance to the other
-// surface is found through an AABB tree (CGAL), and RMS, mean and max are
-// reported each way. PSNR = 20 log10(bbox diagonal of the reference / RMS).
+// The measuring instruments' search for the surface-distance metric
+// (remesh/surface_distance.h, where the sampling and the formulas are
+// defined once): CGAL's AABB tree (Alliez, Tayeb, Wormser, CGAL manual,
+// "3D Fast Intersection and Distance Computation"), so that `compare` and
+// `rd` measure with a library independent of the encoder's own tree.
 #pragma once
 
-#include <cstdint>
+#include <memory>
+#include <vector>
 
 #include "format/mesh.h"
 #include "format/status.h"
+#include "remesh/surface_distance.h"
 
 namespace srcodec {
 
-struct SurfaceDistanceOptions {
-  // Area-uniform samples on each mesh, >= 1. Stratified: each triangle gets
-  // floor(e) or floor(e) + 1 samples, e = its share of the area times this,
-  // so the count drawn (DirectedDistance::samples) is this on average only.
-  size_t samples_per_surface = 200000;
-  uint64_t seed = 1;  // same seed, same samples, same figures (whatever the thread count)
-};
+// CGAL's exact point-to-triangle search over `faces` of `mesh`. Memory: ~70
+// bytes per triangle while it exists.
+std::unique_ptr<NearestSurfacePoint> cgal_search(const TriangleMesh& mesh, const std::vector<uint32_t>& faces);
 
-struct DirectedDistance {
-  double rms = 0, mean = 0, max = 0;
-  size_t samples = 0;
-};
-
-struct SurfaceDistance {
-  DirectedDistance ref_to_test;  // samples on the reference, distances to the test mesh
-  DirectedDistance test_to_ref;
-  double rms = 0;        // the larger RMS of the two directions
-  double hausdorff = 0;  // the larger max
-  double diag = 0;       // bounding-box diagonal of the reference
-  double psnr = 0;       // 20 log10(diag / rms); +inf when rms == 0
-};
-
-// Zero-area triangles are ignored: they have no surface to sample or to be
-// near. Runs on every core TBB allows (tbb::global_control limits it); the
-// figures are bit-identical whatever the thread count. Memory: ~110 bytes per
-// triangle of the two meshes, while both AABB trees exist.
-//
-// Fails with kInvalidMesh when either mesh has no triangle of positive area,
-// a triangle references a vertex that does not exist or a used vertex is not
-// finite; with kInvalidArgument when samples_per_surface is 0.
-StatusOr<SurfaceDistance> surface_distance(const TriangleMesh& reference, const TriangleMesh& test,
-                                           const SurfaceDistanceOptions& options = {});
+// surface_distance() measured with cgal_search: the figures of `compare`
+// and `rd`. Fails as surface_distance() does.
+StatusOr<SurfaceDistance> cgal_surface_distance(const TriangleMesh& reference, const TriangleMesh& test,
+                                                const SurfaceDistanceOptions& options = {});
 
 }  // namespace srcodec

@@ -30,7 +30,7 @@ Status run_compare(const CompareOptions& o) {
   SurfaceDistanceOptions options;
   options.samples_per_surface = o.samples;
   options.seed = o.seed;
-  SRCODEC_ASSIGN_OR_RETURN(SurfaceDistance d, surface_distance(reference, test, options));
+  SRCODEC_ASSIGN_OR_RETURN(SurfaceDistance d, cgal_surface_distance(reference, test, options));
   if (o.json) {
     JsonWriter j;
     j.field("reference", o.reference)

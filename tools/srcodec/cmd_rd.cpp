@@ -84,7 +84,7 @@ class RdRun {
   }
   // Distortion of `decoded` against the input, and the rate of `bytes`.
   Status measure(const TriangleMesh& decoded, uint64_t bytes, RdRow& row) const {
-    SRCODEC_ASSIGN_OR_RETURN(SurfaceDistance d, surface_distance(input_, decoded, metric_));
+    SRCODEC_ASSIGN_OR_RETURN(SurfaceDistance d, cgal_surface_distance(input_, decoded, metric_));
     row.bytes = bytes;
     row.bpv = 8.0 * static_cast<double>(bytes) / static_cast<double>(input_.positions.size());
     row.psnr = d.psnr;
@@ -108,7 +108,6 @@ class StreamCuts {
 
   Status init() {
     SRCODEC_ASSIGN_OR_RETURN(SrmFile f, parse_srm(full_.data(), full_.size()));
-    for (const SrmChunk& c : f.segments) segment_bytes_ += c.declared;
     if (truncate_) {
       SRCODEC_ASSIGN_OR_RETURN(std::vector<uint8_t> smallest, truncate_srm(full_, 0));
       minimum_ = smallest.size();
@@ -121,28 +120,17 @@ class StreamCuts {
   uint64_t minimum() const { return minimum_; }
   uint64_t full_size() const { return full_.size(); }
 
-  // The largest file of at most `budget` bytes: truncate_srm keeping the most
-  // segment bytes that fit (its table shrinks with them: a search, as in
-  // `encode --bytes`), or the first `budget` bytes.
+  // The largest file of at most `budget` bytes: truncate_srm_to_size, as in
+  // `encode --bytes`, or the first `budget` bytes.
   StatusOr<std::vector<uint8_t>> within(uint64_t budget) const {
     if (!truncate_) return std::vector<uint8_t>(full_.begin(), full_.begin() + std::min(budget, full_size()));
-    uint64_t lo = 0, hi = segment_bytes_;
-    while (lo < hi) {
-      const uint64_t mid = lo + (hi - lo + 1) / 2;
-      SRCODEC_ASSIGN_OR_RETURN(std::vector<uint8_t> file, truncate_srm(full_, mid));
-      if (file.size() <= budget) {
-        lo = mid;
-      } else {
-        hi = mid - 1;
-      }
-    }
-    return truncate_srm(full_, lo);
+    return truncate_srm_to_size(full_.data(), full_.size(), budget);
   }
 
  private:
   std::vector<uint8_t> full_;
   bool truncate_;
-  uint64_t segment_bytes_ = 0, minimum_ = 0;
+  uint64_t minimum_ = 0;
 };
 
 // `points` sizes from `lo` to `hi`, evenly spaced in log(bytes), distinct.

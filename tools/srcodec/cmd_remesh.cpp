@@ -11,7 +11,7 @@
 #include "format/file_io.h"
 #include "format/mesh_files/mesh_io.h"
 #include "remesh/remesher.h"
-#include "tools/measure/surface_distance.h"
+#include "remesh/surface_distance.h"
 #include "tools/srcodec/commands.h"
 #include "tools/srcodec/json_writer.h"
 #include "tools/srcodec/remesh_flags.h"

@@ -13,12 +13,10 @@ int main(int argc, char** argv) {
 #if SRCODEC_WITH_MEASURE
       srcodec::add_compare_command(cli),
       srcodec::add_draco_command(cli),
-      srcodec::add_remesh_command(cli),
 #endif
 #if SRCODEC_WITH_ENCODER
+      srcodec::add_remesh_command(cli),
       srcodec::add_subdivide_command(cli),
-#endif
-#if SRCODEC_WITH_MEASURE
       srcodec::add_encode_command(cli),
 #endif
       srcodec::add_decode_command(cli),

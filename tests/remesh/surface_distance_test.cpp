@@ -1,4 +1,4 @@
-#include "tools/measure/surface_distance.h"
+#include "remesh/surface_distance.h"
 
 #include "tests/test_util.h"
 

@@ -1,11 +1,11 @@
-#include "tools/measure/rate_control.h"
+#include "codec/rate_control.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "codec/srm_codec.h"
 #include "format/srm/srm_file.h"
-#include "tools/measure/surface_distance.h"
+#include "remesh/surface_distance.h"
 
 namespace srcodec {
 
@@ -30,17 +30,11 @@ StatusOr<double> StreamCutter::psnr(uint64_t segment_bytes, size_t samples) cons
 }
 
 StatusOr<uint64_t> StreamCutter::segment_bytes_within(uint64_t bytes) const {
-  uint64_t lo = 0, hi = segment_bytes_;
-  while (lo < hi) {
-    const uint64_t mid = lo + (hi - lo + 1) / 2;
-    SRCODEC_ASSIGN_OR_RETURN(std::vector<uint8_t> file, cut(mid));
-    if (file.size() <= bytes) {
-      lo = mid;
-    } else {
-      hi = mid - 1;
-    }
-  }
-  return lo;
+  SRCODEC_ASSIGN_OR_RETURN(std::vector<uint8_t> file, truncate_srm_to_size(full_.data(), full_.size(), bytes));
+  SRCODEC_ASSIGN_OR_RETURN(SrmFile f, parse_srm(file.data(), file.size()));
+  uint64_t kept = 0;
+  for (const SrmChunk& c : f.segments) kept += c.bytes.size();
+  return kept;
 }
 
 StatusOr<double> whole_stream_psnr(const StreamCutter& cutter) {

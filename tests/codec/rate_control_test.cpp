@@ -1,6 +1,6 @@
-// Rate control over an embedded .srm stream (tools/measure/rate_control.h):
-// the knee `srcodec encode` keeps with no rate option.
-#include "tools/measure/rate_control.h"
+// Rate control over an embedded .srm stream (codec/rate_control.h): the
+// knee `srcodec encode` keeps with no rate option.
+#include "codec/rate_control.h"
 
 #include <gtest/gtest.h>
 

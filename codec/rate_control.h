@@ -1,7 +1,7 @@
 // Rate control over an embedded .srm stream: which prefix of its
-// coefficient segments to keep for a byte budget or a PSNR target, measured
-// with the project's metric against the input. Used by `srcodec encode` and
-// the speed benchmark.
+// coefficient segments to keep for a byte budget or a PSNR target, each cut
+// decoded and measured against the input with the encoder's own estimate of
+// the metric (remesh/surface_distance.h, our triangle tree).
 #pragma once
 
 #include <cstddef>
@@ -16,14 +16,16 @@ namespace srcodec {
 // The file that keeps the first `segment_bytes` bytes of coefficient
 // segments (truncate_srm), its size, and the PSNR against the input of the
 // mesh it decodes to. Holds references: `input` and `full` must outlive it.
+// A `full` that does not parse has no segment bytes, and its cuts fail.
 class StreamCutter {
  public:
   StreamCutter(const TriangleMesh& input, const std::vector<uint8_t>& full);
   uint64_t segment_bytes() const { return segment_bytes_; }
   StatusOr<std::vector<uint8_t>> cut(uint64_t segment_bytes) const;
   StatusOr<double> psnr(uint64_t segment_bytes, size_t samples) const;
-  // The most segment bytes whose file fits in `bytes` (the table shrinks
-  // with the segments it lists, so this is a search, not a subtraction).
+  // The most segment bytes whose file fits in `bytes` (truncate_srm_to_size:
+  // the table shrinks with the segments it lists, so this is a search, not a
+  // subtraction). An error when even the smallest file takes more.
   StatusOr<uint64_t> segment_bytes_within(uint64_t bytes) const;
 
  private:
@@ -38,12 +40,11 @@ inline constexpr size_t kRateControlSamples = 60000;
 
 // With no rate option, `srcodec encode` keeps the knee of the stream's
 // rate-distortion curve (knee_of_stream): past it, each further bit per
-// input vertex gains less than kKneeDbPerBpv dB. Draco gains about 6 dB for
-// each 1 to 3 more bits per input vertex at 10 to 14 quantization bits, and
-// the curves cross beyond the knee: the old default, 1 dB below the whole
-// stream, wrote 1.4 to 6.8 times Draco's bytes at the same PSNR on 10 of the
-// 13 corpus meshes, the knee 0.27 to 0.94 times on all 13 (README, "Encoding
-// and decoding").
+// input vertex gains less than kKneeDbPerBpv dB. There the stream's own curve
+// flattens toward the remesh's error, its floor, while a coder that keeps
+// the input's connectivity (Draco gains about 6 dB for each 1 to 3 more bits
+// per input vertex) climbs on: bytes past the knee buy little. The figures
+// behind this choice are in the README, "The default rate".
 inline constexpr double kKneeDbPerBpv = 1.0;
 // The cuts measured on the way: each file this much larger than the last.
 inline constexpr double kKneeCutRatio = 1.25;
