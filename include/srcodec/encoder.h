@@ -39,11 +39,9 @@ struct Rate {
   static Rate psnr(double db) { return {Kind::kPsnr, db}; }
 };
 
-// A stage of the encode that has just finished.
+// A step of the encode that has just finished.
 struct EncodeProgress {
-  const char* stage = "";  // "clean", "oversample", "sites", "base mesh", "level", "fit", "untangle", "coarsen",
-                           // "slivers", "transform", "rate"
-  int level = 0;           // with "level": the refinement level just built
+  const char* stage = "";  // "remesh", "code" (the whole embedded stream), "rate" (the cut chosen), "measure"
   double seconds = 0;      // since encode() began
 };
 

@@ -1,16 +1,14 @@
 // `srcodec encode MESH -o OUT.srm`: remesh, transform, code, and keep as much
 // of the embedded stream as the rate option asks (--bytes, --bpv, --psnr).
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
 #include <string>
 
-#include "codec/srm_codec.h"
+#include "codec/encode_mesh.h"
 #include "format/file_io.h"
 #include "format/mesh_files/mesh_io.h"
-#include "codec/rate_control.h"
 #include "tools/srcodec/commands.h"
 #include "tools/srcodec/json_writer.h"
 #include "tools/srcodec/remesh_flags.h"
@@ -30,101 +28,107 @@ struct EncodeCliOptions {
   bool json = false, quiet = false;
 };
 
-Status run_encode(const EncodeCliOptions& o) {
-  SRCODEC_ASSIGN_OR_RETURN(RemeshOptions remesh_options, to_remesh_options(o.remesh));
-  SRCODEC_RETURN_IF_ERROR(check_output_path(o.output));
-  const auto say = [&](const std::string& line) {
-    if (!o.quiet) std::cerr << "encode: " << line << std::endl;
-  };
-  if (!o.quiet) remesh_options.progress = [](const std::string& line) { std::cerr << "remesh: " << line << std::endl; };
-  SRCODEC_ASSIGN_OR_RETURN(TriangleMesh input, read_triangle_mesh(o.input));
-  const auto start = std::chrono::steady_clock::now();
-  RemeshReport remesh_report;
-  SRCODEC_ASSIGN_OR_RETURN(SemiRegularMesh srm, remesh(input, remesh_options, &remesh_report));
-  const double remesh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  SrmEncodeOptions encode_options;
-  encode_options.tangential_factor = o.tangential_factor;
-  encode_options.base_bits = o.base_bits;
-  encode_options.raw_planes = o.raw_planes;
-  const auto coding_start = std::chrono::steady_clock::now();
-  SRCODEC_ASSIGN_OR_RETURN(EncodedSrm encoded, encode_srm(srm, input, encode_options));
-  const double coding_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - coding_start).count();
-  const uint64_t full = encoded.bytes.size();
-  const StreamCutter cutter(input, encoded.bytes);
-  // Header, base mesh and flags: the least a file can hold.
-  SRCODEC_ASSIGN_OR_RETURN(std::vector<uint8_t> smallest, cutter.cut(0));
-  const uint64_t minimum = smallest.size();
+Rate rate_of(const EncodeCliOptions& o) {
+  if (o.bytes > 0) return Rate::bytes(o.bytes);
+  if (o.bpv > 0) return Rate::bits_per_vertex(o.bpv);
+  if (o.psnr > 0) return Rate::psnr(o.psnr);
+  return Rate::knee();
+}
 
-  uint64_t segment_bytes = cutter.segment_bytes();
-  std::string rate;
-  if (o.bytes > 0 || o.bpv > 0) {
-    const uint64_t budget =
-        o.bytes > 0 ? o.bytes : static_cast<uint64_t>(std::floor(o.bpv * input.positions.size() / 8.0));
-    rate = o.bytes > 0 ? "--bytes " + std::to_string(o.bytes) : "--bpv " + std::to_string(o.bpv);
-    if (budget < minimum)
-      return invalid_argument(rate + " allows " + std::to_string(budget) + " bytes, fewer than the " +
-                              std::to_string(minimum) + " that the header, base mesh and refinement flags take "
-                              "(try fewer --base-vertices or --levels)");
-    SRCODEC_ASSIGN_OR_RETURN(segment_bytes, cutter.segment_bytes_within(budget));
-  } else if (o.psnr > 0) {
-    const double target = o.psnr;
-    SRCODEC_ASSIGN_OR_RETURN(double best, whole_stream_psnr(cutter));
-    rate = "--psnr " + std::to_string(target);
-    if (best < target)
-      return invalid_argument("--psnr " + std::to_string(target) + " is out of reach: the whole stream gives " +
-                              std::to_string(best) + " dB, limited by the remesh (try more --levels or " +
-                              "--base-vertices)");
-    say("searching for the shortest stream that reaches " + std::to_string(target) + " dB");
-    SRCODEC_ASSIGN_OR_RETURN(segment_bytes, segment_bytes_for_psnr(cutter, target));
+// What the rate step is about to do, said once the stream is coded.
+std::string rate_search_line(const Rate& rate) {
+  char line[200];
+  if (rate.kind == Rate::Kind::kPsnr) {
+    std::snprintf(line, sizeof line, "searching for the shortest stream that reaches %g dB", rate.value);
+  } else if (rate.kind == Rate::Kind::kKnee) {
+    std::snprintf(line, sizeof line,
+                  "no rate option given: measuring cuts of the stream up to its knee, where one more bit per input "
+                  "vertex gains less than %g dB (use --bpv, --bytes or --psnr to choose)",
+                  kKneeDbPerBpv);
   } else {
-    char per_bpv[32];
-    std::snprintf(per_bpv, sizeof per_bpv, "%g", kKneeDbPerBpv);
-    say(std::string("no rate option given: measuring cuts of the stream up to its knee, where one more bit per input "
-                    "vertex gains less than ") + per_bpv + " dB (use --bpv, --bytes or --psnr to choose)");
-    SRCODEC_ASSIGN_OR_RETURN(Knee knee, knee_of_stream(cutter, input.positions.size()));
-    segment_bytes = knee.segment_bytes;
-    rate = knee.whole_stream ? std::string("the whole stream (no knee before it)")
-                             : std::string("the knee at ") + per_bpv + " dB/bpv";
-    char line[160];
-    const char* whole = !knee.whole_stream          ? ""
-                        : std::isfinite(knee.psnr) ? ", the whole stream"
-                                                   : ": the whole stream reproduces the input exactly";
-    std::snprintf(line, sizeof line, "%d cut%s measured: keeping %llu of %llu bytes, %.2f dB%s", knee.cuts,
-                  knee.cuts == 1 ? "" : "s", static_cast<unsigned long long>(knee.file_bytes),
-                  static_cast<unsigned long long>(full), knee.psnr, whole);
-    say(line);
+    return "";
   }
-  SRCODEC_ASSIGN_OR_RETURN(std::vector<uint8_t> file, cutter.cut(segment_bytes));
-  const uint64_t keep = file.size();
-  SRCODEC_ASSIGN_OR_RETURN(double psnr, cutter.psnr(segment_bytes, o.samples));
-  SRCODEC_RETURN_IF_ERROR(write_file_atomically(o.output, std::string(file.begin(), file.end())));
+  return line;
+}
+
+// The rate kept, in words, and with the knee where its search stopped.
+std::string rate_text(const EncodeCliOptions& o, const Knee& knee) {
+  char text[64];
+  if (o.bytes > 0) return "--bytes " + std::to_string(o.bytes);
+  if (o.bpv > 0) return "--bpv " + std::to_string(o.bpv);
+  if (o.psnr > 0) return "--psnr " + std::to_string(o.psnr);
+  if (knee.whole_stream) return "the whole stream (no knee before it)";
+  std::snprintf(text, sizeof text, "the knee at %g dB/bpv", kKneeDbPerBpv);
+  return text;
+}
+
+std::string knee_line(const MeshEncodeResult& r) {
+  const Knee& knee = r.knee;
+  const char* whole = !knee.whole_stream          ? ""
+                      : std::isfinite(knee.psnr) ? ", the whole stream"
+                                                 : ": the whole stream reproduces the input exactly";
+  char line[200];
+  std::snprintf(line, sizeof line, "%d cut%s measured: keeping %llu of %llu bytes, %.2f dB%s", knee.cuts,
+                knee.cuts == 1 ? "" : "s", static_cast<unsigned long long>(knee.file_bytes),
+                static_cast<unsigned long long>(r.full_stream_bytes), knee.psnr, whole);
+  return line;
+}
+
+void print_result(const EncodeCliOptions& o, const MeshEncodeOptions& options, const TriangleMesh& input,
+                  const MeshEncodeResult& r) {
+  const uint64_t keep = r.file.size();
   const double bpv = 8.0 * keep / input.positions.size();
+  const std::string rate = rate_text(o, r.knee);
   if (o.json) {
     JsonWriter j;
     j.field("input", o.input)
         .field("output", o.output)
         .field("input_vertices", input.positions.size())
-        .field("levels", encoded.header.levels)
-        .field("base_vertices", static_cast<size_t>(encoded.header.base_vertices))
+        .field("levels", r.header.levels)
+        .field("base_vertices", static_cast<size_t>(r.header.base_vertices))
         .field("rate", rate)
         .field("bytes", static_cast<size_t>(keep))
-        .field("full_stream_bytes", static_cast<size_t>(full))
-        .field("minimum_bytes", static_cast<size_t>(minimum))
+        .field("full_stream_bytes", static_cast<size_t>(r.full_stream_bytes))
+        .field("minimum_bytes", static_cast<size_t>(r.minimum_bytes))
         .field("bpv", bpv)
-        .field("psnr", psnr)
-        .field("unsplit_tangles", remesh_options.unsplits())
-        .field("unsplit_splits", remesh_report.unsplit.undone)
-        .field("remesh_seconds", remesh_seconds)
-        .field("coding_seconds", coding_seconds);
+        .field("psnr", r.psnr)
+        .field("unsplit_tangles", options.remesh.unsplits())
+        .field("unsplit_splits", r.remesh.unsplit.undone)
+        .field("remesh_seconds", r.seconds_remesh)
+        .field("coding_seconds", r.seconds_coding)
+        .field("rate_seconds", r.seconds_rate);
     std::cout << j.str() << "\n";
-  } else {
-    std::printf("%s: %zu vertices -> %s: %llu bytes (%.3f bpv), %.2f dB PSNR, %d levels over %llu base vertices\n",
-                o.input.c_str(), input.positions.size(), o.output.c_str(), static_cast<unsigned long long>(keep), bpv,
-                psnr, encoded.header.levels, static_cast<unsigned long long>(encoded.header.base_vertices));
-    std::printf("  rate %s; full stream %llu bytes; remesh %.2f s, coding %.2f s\n", rate.c_str(),
-                static_cast<unsigned long long>(full), remesh_seconds, coding_seconds);
+    return;
   }
+  std::printf("%s: %zu vertices -> %s: %llu bytes (%.3f bpv), %.2f dB PSNR, %d levels over %llu base vertices\n",
+              o.input.c_str(), input.positions.size(), o.output.c_str(), static_cast<unsigned long long>(keep), bpv,
+              r.psnr, r.header.levels, static_cast<unsigned long long>(r.header.base_vertices));
+  std::printf("  rate %s; full stream %llu bytes; remesh %.2f s, coding %.2f s, rate %.2f s\n", rate.c_str(),
+              static_cast<unsigned long long>(r.full_stream_bytes), r.seconds_remesh, r.seconds_coding,
+              r.seconds_rate);
+}
+
+Status run_encode(const EncodeCliOptions& o) {
+  MeshEncodeOptions options;
+  SRCODEC_ASSIGN_OR_RETURN(options.remesh, to_remesh_options(o.remesh));
+  SRCODEC_RETURN_IF_ERROR(check_output_path(o.output));
+  options.coding.tangential_factor = o.tangential_factor;
+  options.coding.base_bits = o.base_bits;
+  options.coding.raw_planes = o.raw_planes;
+  options.rate = rate_of(o);
+  options.samples = o.samples;
+  if (!o.quiet) {
+    options.remesh.progress = [](const std::string& line) { std::cerr << "remesh: " << line << std::endl; };
+    options.progress = [rate = options.rate](const EncodeProgress& p) {
+      const std::string line = rate_search_line(rate);
+      if (std::string(p.stage) == "code" && !line.empty()) std::cerr << "encode: " << line << std::endl;
+    };
+  }
+  SRCODEC_ASSIGN_OR_RETURN(TriangleMesh input, read_triangle_mesh(o.input));
+  SRCODEC_ASSIGN_OR_RETURN(MeshEncodeResult result, encode_mesh(input, options));
+  if (!o.quiet && options.rate.kind == Rate::Kind::kKnee) std::cerr << "encode: " << knee_line(result) << std::endl;
+  SRCODEC_RETURN_IF_ERROR(write_file_atomically(o.output, std::string(result.file.begin(), result.file.end())));
+  print_result(o, options, input, result);
   return ok_status();
 }
 
