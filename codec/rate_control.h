@@ -44,7 +44,7 @@ inline constexpr size_t kRateControlSamples = 60000;
 // flattens toward the remesh's error, its floor, while a coder that keeps
 // the input's connectivity (Draco gains about 6 dB for each 1 to 3 more bits
 // per input vertex) climbs on: bytes past the knee buy little. The figures
-// behind this choice are in the README, "The default rate".
+// behind this choice are in docs/codec_design.md, "The default rate".
 inline constexpr double kKneeDbPerBpv = 1.0;
 // The cuts measured on the way: each file this much larger than the last.
 inline constexpr double kKneeCutRatio = 1.25;

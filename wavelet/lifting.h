@@ -19,7 +19,7 @@ namespace srcodec {
 // Every even vertex a moves by kUpdateWeight / valence(a) times each detail on
 // its edges: 3/4 of the mean detail around it, which is u = 1/8 per edge at
 // valence 6, the weight that keeps the mean position of a regular level
-// unchanged (README.md, "Update").
+// unchanged (wavelet/README.md, "Update weight").
 inline constexpr double kUpdateWeight = 0.75;
 
 // Connectivity-only precomputation for one hierarchy, shared by encoder and
