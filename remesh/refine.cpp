@@ -36,6 +36,7 @@
 #include "remesh/adjacency.h"
 #include "remesh/density.h"
 #include "remesh/disk_map.h"
+#include "remesh/folds.h"
 #include "remesh/geometry.h"
 #include "remesh/point_cloud.h"
 
@@ -1499,18 +1500,16 @@ class Refiner {
     for (size_t s = 0; s < anchor_.size(); ++s) {
       if (anchor_[s] >= 0) corner_normal[s] = normals_[nearest_input_vertex(anchor_[s])];
     }
-    size_t folded = 0;
-    for (const auto& t : triangles_) {
-      const double f = srcodec::facing(points_[anchor_[t[0]]], points_[anchor_[t[1]]], points_[anchor_[t[2]]],
-                                 corner_normal[t[0]] + corner_normal[t[1]] + corner_normal[t[2]]);
-      folded += !(f > kFoldedFacing);
-    }
-    return folded;
+    size_t count = 0;
+    for (const auto& t : triangles_)
+      count += srcodec::folded(srcodec::facing(points_[anchor_[t[0]]], points_[anchor_[t[1]]], points_[anchor_[t[2]]],
+                                               corner_normal[t[0]] + corner_normal[t[1]] + corner_normal[t[2]]));
+    return count;
   }
 
   // Folded: facing the wrong way, or so thin it has no usable area.
   bool folded(const std::array<int32_t, 3>& tri, int32_t moved, int32_t to) const {
-    return !(facing(tri, moved, to) > kFoldedFacing);
+    return srcodec::folded(facing(tri, moved, to));
   }
 
   // The mean position of site s's neighbours in the current level's mesh
@@ -1541,7 +1540,7 @@ class Refiner {
     auto add = [&](const std::vector<std::array<int32_t, 3>>& tris, const Adjacency& around) {
       for (const int32_t* t = around.begin(s); t != around.end(s); ++t) {
         const double f = facing(tris[*t], s, to);
-        folds += !(f > kFoldedFacing);
+        folds += srcodec::folded(f);
         worst = std::min(worst, f);
       }
     };

@@ -14,7 +14,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "remesh/fit.h"
+#include "remesh/folds.h"
 
 namespace srcodec {
 

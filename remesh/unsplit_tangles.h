@@ -27,7 +27,7 @@
 
 #include "format/mesh.h"
 #include "format/status.h"
-#include "remesh/fit.h"
+#include "remesh/folds.h"
 #include "format/semi_regular/semi_regular_mesh.h"
 
 namespace srcodec {

@@ -9,6 +9,7 @@
 
 #include "remesh/adjacency.h"
 #include "remesh/fit.h"
+#include "remesh/folds.h"
 #include "remesh/geometry.h"
 #include "remesh/point_cloud.h"
 #include "remesh/small_lp.h"
@@ -129,16 +130,16 @@ class Judge {
       for (int32_t t : tris) {
         const auto& tri = levels_[k][static_cast<size_t>(t)];
         const double f = facing(x, side, tri);
-        if (!(f > kFoldedFacing)) {
+        if (folded(f)) {
           ++count;
-          e += kFoldedFacing - f;
+          e += fold_depth(f);
         }
         for (int32_t u : adjacency_[k].across[static_cast<size_t>(t)]) {
           if (u < 0 || (u < t && std::binary_search(tris.begin(), tris.end(), u))) continue;
           const Eigen::Vector3d a = triangle_normal(x, tri), b = triangle_normal(x, levels_[k][static_cast<size_t>(u)]);
           if (pleat(a, b)) {
             ++count;
-            e += -a.dot(b) / std::max(a.norm() * b.norm(), 1e-300) - 0.8660254;
+            e += pleat_depth(a, b);
           }
         }
       }
@@ -292,7 +293,7 @@ bool joint_moves(const Judge& judge, const std::vector<Eigen::Vector3d>& x, cons
       row.norm = std::sqrt(squared);
       if (!(row.norm > 0.0)) continue;
       const double sigma = r.dot(triangle_normal(x, tri));
-      row.tangled = !(facing(x, side, tri) > kFoldedFacing);
+      row.tangled = folded(x, side, tri);
       row.slack = row.tangled ? sigma : 0.5 * sigma;
       rows.push_back(row);
     }
@@ -631,7 +632,7 @@ std::vector<TangledPlace> tangled_places(const UntangleInput& sides, const std::
                               x[static_cast<size_t>(level[t][2])]) / 3.0);
     };
     for (size_t t = 0; t < level.size(); ++t)
-      if (!(facing(x, side, level[t]) > kFoldedFacing)) tangles.push_back({centroid(t), finest, true});
+      if (folded(x, side, level[t])) tangles.push_back({centroid(t), finest, true});
     const std::vector<std::array<int32_t, 3>> across = triangles_across(level);
     for (size_t t = 0; t < level.size(); ++t)
       for (int32_t u : across[t])  // each pair once, from its lower triangle (as Judge::count)

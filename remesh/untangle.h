@@ -19,6 +19,7 @@
 
 #include "format/mesh.h"
 #include "remesh/fit.h"
+#include "remesh/folds.h"
 #include "remesh/levels_to_move.h"
 
 namespace srcodec {
