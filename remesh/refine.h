@@ -2,7 +2,11 @@
 // Payan, Antonini §III-B, Fig. 4 and 5, Eqs. 4-5; DESIGN.md remesh/ steps 6
 // and 7): per level, split the selected triangles 1-to-4, start every new
 // vertex at the input vertex nearest its edge's midpoint on the base domain,
-// then run Lloyd relaxation over the sites of all levels so far.
+// then run Lloyd relaxation over the sites of all levels so far. The
+// paper's steps are refine.cpp, new_vertices.cpp and lloyd_relaxation.cpp;
+// our repairs of the folds they leave are fold_repairs.cpp,
+// patch_reparam.cpp and spike_mending.cpp (remesh/refiner.h holds the
+// state they share).
 #pragma once
 
 #include <cstddef>
