@@ -50,7 +50,10 @@ Status Refiner::run(std::vector<RefineLevelReport>* report) {
         }))
       lr.selected = 0;  // nothing would be kept above this level
     if (lr.selected == 0) {
-      progress("level " + std::to_string(level + 1) + ": no triangle passes the threshold; refinement stops");
+      RemeshProgress p;
+      p.step = RemeshStep::kThresholdStops;
+      p.level = level + 1;
+      progress(p);
       break;
     }
     const size_t nodes_before = h_.nodes().size();
@@ -70,15 +73,11 @@ Status Refiner::run(std::vector<RefineLevelReport>* report) {
     lr.vertices = h_.level_vertex_count(level);
     lr.triangles = triangles_.size();
     lr.seconds = seconds_since(start);
-    std::string tangles;  // the goal is none; say so when some are left
-    if (lr.folded_triangles + lr.coarse_folded_triangles > 0)
-      tangles += ", " + std::to_string(lr.folded_triangles) + " folded (" +
-                 std::to_string(lr.coarse_folded_triangles) + " on coarser levels)";
-    if (lr.pleats > 0) tangles += ", " + std::to_string(lr.pleats) + " pleats";
-    if (lr.spikes_mended > 0) tangles += ", " + std::to_string(lr.spikes_mended) + " spikes mended";
-    progress("level " + std::to_string(level) + ": " + std::to_string(lr.vertices) + " vertices, " +
-             std::to_string(lr.triangles) + " triangles, " + std::to_string(lr.lloyd_iterations) +
-             " Lloyd steps" + tangles + ", " + std::to_string(lr.seconds) + " s");
+    RemeshProgress p;
+    p.step = RemeshStep::kLevel;
+    p.refine_level = &lr;
+    p.seconds = lr.seconds;
+    progress(p);
     if (report) report->push_back(lr);
   }
   if ((options_.tolerance > 0.0 || options_.threshold_after_uniform) && level > 0)
@@ -148,13 +147,14 @@ Status Refiner::coarsen(int32_t level, const std::vector<int32_t>& cell_of, std:
     last.pleats = lr.pleats;
     last.seconds += seconds_since(start);
   }
-  const std::string criteria = options_.threshold_after_uniform && options_.tolerance > 0.0 ? "threshold and tolerance"
-                               : options_.threshold_after_uniform                             ? "threshold"
-                                                                                              : "tolerance";
-  progress(criteria + ": " + std::to_string(triangles_.size()) + " triangles left, " +
-           std::to_string(lr.folded_triangles) + " folded (" + std::to_string(lr.coarse_folded_triangles) +
-           " on coarser levels), " + std::to_string(lr.pleats) + " pleats, " +
-           std::to_string(seconds_since(start)) + " s");
+  RemeshProgress p;
+  p.step = RemeshStep::kSplitsUndone;
+  p.refine_level = &lr;
+  p.triangles = triangles_.size();
+  p.threshold = options_.threshold_after_uniform;
+  p.tolerance = options_.tolerance > 0.0;
+  p.seconds = seconds_since(start);
+  progress(p);
   return ok_status();
 }
 

@@ -18,6 +18,7 @@
 #include "format/mesh.h"
 #include "format/status.h"
 #include "remesh/base_mesh.h"
+#include "remesh/progress.h"
 #include "format/semi_regular/hierarchy.h"
 
 namespace srcodec {
@@ -50,7 +51,7 @@ struct RefineOptions {
   // the middle of that path, and refuse Lloyd moves that make an edge span
   // a new detour (ours; RemeshOptions::follow_detours).
   bool follow_detours = false;
-  std::function<void(const std::string&)> progress;  // one line per stage, may be empty
+  RemeshProgressCallback progress;  // kLevel, kThresholdStops, kSplitsUndone
 };
 
 struct RefineLevelReport {

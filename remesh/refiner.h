@@ -49,8 +49,8 @@ class Refiner {
   RefineResult result() &&;
 
  private:
-  void progress(const std::string& line) const {
-    if (options_.progress) options_.progress(line);
+  void progress(const RemeshProgress& p) const {
+    if (options_.progress) options_.progress(p);
   }
 
   Eigen::Vector3d on_base(const ParamPoint& p) const;

@@ -17,6 +17,7 @@
 #include "remesh/untangle.h"
 #include "remesh/measured_coarsening.h"
 #include "remesh/oversample.h"
+#include "remesh/progress.h"
 #include "remesh/refine.h"
 #include "format/semi_regular/semi_regular_mesh.h"
 
@@ -83,7 +84,7 @@ struct RemeshOptions {
   // rounder (remesh/relax_slivers.h; ours). Fewer triangles turn over after
   // coding.
   bool relax_slivers = true;
-  std::function<void(const std::string&)> progress;  // one line per stage, may be empty
+  RemeshProgressCallback progress;  // after each step (remesh/progress.h), may be empty
 };
 
 struct RemeshReport {

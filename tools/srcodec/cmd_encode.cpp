@@ -15,6 +15,7 @@
 #include "tools/srcodec/commands.h"
 #include "tools/srcodec/json_writer.h"
 #include "tools/srcodec/remesh_flags.h"
+#include "tools/srcodec/remesh_progress.h"
 
 namespace srcodec {
 namespace {
@@ -37,7 +38,9 @@ Status run_encode(const EncodeCliOptions& o) {
   const auto say = [&](const std::string& line) {
     if (!o.quiet) std::cerr << "encode: " << line << std::endl;
   };
-  if (!o.quiet) remesh_options.progress = [](const std::string& line) { std::cerr << "remesh: " << line << std::endl; };
+  if (!o.quiet)
+    remesh_options.progress =
+        remesh_progress_lines([](const std::string& line) { std::cerr << "remesh: " << line << std::endl; });
   SRCODEC_ASSIGN_OR_RETURN(TriangleMesh input, read_triangle_mesh(o.input));
   const auto start = std::chrono::steady_clock::now();
   RemeshReport remesh_report;

@@ -28,6 +28,7 @@
 #include "tools/srcodec/commands.h"
 #include "tools/srcodec/json_writer.h"
 #include "tools/srcodec/remesh_flags.h"
+#include "tools/srcodec/remesh_progress.h"
 
 #ifndef SRCODEC_SOURCE_DIR
 #define SRCODEC_SOURCE_DIR "."
@@ -178,7 +179,8 @@ StatusOr<DecodedSrm> timed_decode(const std::vector<uint8_t>& file, bool prefix_
 
 StatusOr<std::vector<RdRow>> srcodec_rows(const RdRun& run, const RdCliOptions& o) {
   SRCODEC_ASSIGN_OR_RETURN(RemeshOptions remesh_options, to_remesh_options(o.remesh));
-  if (!o.quiet) remesh_options.progress = [&run](const std::string& line) { run.say("remesh: " + line); };
+  if (!o.quiet)
+    remesh_options.progress = remesh_progress_lines([&run](const std::string& line) { run.say("remesh: " + line); });
   run.say("remeshing and encoding the full stream");
   const auto start = std::chrono::steady_clock::now();
   SRCODEC_ASSIGN_OR_RETURN(SemiRegularMesh srm, remesh(run.input(), remesh_options));
