@@ -178,10 +178,6 @@ std::vector<int32_t> Refiner::relax(int32_t level, RefineLevelReport& lr) {
         ++lr.refused_folds;
         continue;
       }
-      if (!keeps_off_detours(row, best)) {
-        ++lr.refused_detours;
-        continue;
-      }
       move_site(row, best);
       ++moved;
     }

@@ -44,10 +44,6 @@ Status Refiner::place_new_vertex(int32_t v) {
   const Eigen::Vector3d a = points_[anchor_[edge[0]]], b = points_[anchor_[edge[1]]];  // copies: add_point may grow points_
   const Eigen::Vector3d midpoint = 0.5 * (a + b);
   const double edge_length = (a - b).norm();
-  if (const int32_t across = middle_of_detour(v, anchor_[edge[0]], anchor_[edge[1]]); across >= 0) {
-    ++detour_vertices_;
-    return take(v, across);
-  }
   const Eigen::Vector3d side = normals_[anchor_[edge[0]]] + normals_[anchor_[edge[1]]];
   if (side.norm() > 0.0) {
     const Eigen::Vector3d axis = side.normalized();

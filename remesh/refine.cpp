@@ -63,12 +63,10 @@ Status Refiner::run(std::vector<RefineLevelReport>* report) {
     ++level;
     anchor_.resize(h_.vertex_count(), -1);
     build_level_mesh(level);  // new vertices need to know whether they are on the boundary
-    const size_t midpoints_before = midpoint_vertices_, surface_before = surface_vertices_,
-                 detours_before = detour_vertices_;
+    const size_t midpoints_before = midpoint_vertices_, surface_before = surface_vertices_;
     for (int32_t v : new_vertices) SRCODEC_RETURN_IF_ERROR(place_new_vertex(v));
     lr.midpoint_vertices = midpoint_vertices_ - midpoints_before;
     lr.surface_vertices = surface_vertices_ - surface_before;
-    lr.detour_vertices = detour_vertices_ - detours_before;
     cell_of = relax(level, lr);
     lr.vertices = h_.level_vertex_count(level);
     lr.triangles = triangles_.size();

@@ -46,11 +46,6 @@ struct RefineOptions {
   // min_moved_fraction of its sites moved in a step.
   int max_lloyd_iterations = 10;
   double min_moved_fraction = 0.002;
-  // Where the input between a parent edge's ends is a detour (its path along
-  // the input's edges more than 1.6 times the chord), put the new vertex in
-  // the middle of that path, and refuse Lloyd moves that make an edge span
-  // a new detour (ours; RemeshOptions::follow_detours).
-  bool follow_detours = false;
   RemeshProgressCallback progress;  // kLevel, kThresholdStops, kSplitsUndone
 };
 
@@ -66,8 +61,6 @@ struct RefineLevelReport {
   int lloyd_iterations = 0;
   size_t moves = 0;            // site moves accepted, summed over the steps
   size_t refused_folds = 0;    // site moves refused because a triangle would flip
-  size_t refused_detours = 0;  // site moves refused because an edge would span a detour of the input
-  size_t detour_vertices = 0;  // new vertices put in the middle of the input's detour under their edge
   size_t empty_cells = 0;       // sites whose cell holds only their own vertex after the last step
   // Triangles facing against the input surface at the end (normal against
   // the summed input normals at their corners, or no area); 0 in a clean

@@ -2,7 +2,7 @@
 // remesh/: refine() in remesh/refine.h is the public face). The paper's
 // refinement (refine.cpp, lloyd_relaxation.cpp, new_vertices.cpp) and our
 // repairs of the folds it leaves (fold_repairs.cpp, patch_reparam.cpp,
-// spike_mending.cpp, detours.cpp) work on one hierarchy and one set of
+// spike_mending.cpp) work on one hierarchy and one set of
 // sites, so they are one class; each file defines its part.
 #pragma once
 
@@ -66,38 +66,9 @@ class Refiner {
   bool near_face(int32_t face, int32_t other) const;
 
   // The input's vertex neighbours, built on first use (by the repairs'
-  // input_disk and path_length; most runs need neither).
+  // input_disk; most runs need none).
   const Adjacency& input_neighbors();
 
-  // The shortest path along the input's edges from input vertex `from` to
-  // `to`, when it is no longer than `limit`: its length, with path_prev_
-  // leading back from `to` until clear_path(); infinity otherwise. A* with
-  // the straight distance to `to` as the estimate.
-  double path_length(int32_t from, int32_t to, double limit);
-  void clear_path();
-
-  // An edge of input vertices a and b spans a detour of the input when the
-  // shortest path between them along the input's edges is more than
-  // kDetour times the chord: a pocket, a crease, the gap between two walls
-  // or the rim of a thin flap, which a triangle on the edge cuts across.
-  // The bunny at 5 levels with 170 base vertices (78.8 dB) lost 92.8% of its
-  // squared error to such a bridge between its ears, 5.5 level-3 edges deep
-  // along the input.
-  static constexpr double kDetour = 1.6;
-  bool detour(int32_t a, int32_t b);
-
-  // Where new vertex v's parent edge (input vertices from, to) spans a
-  // detour, v goes to the free input vertex of the path nearest the path's
-  // middle, so that the finer levels follow the surface into it: the
-  // chord's midpoint lies across the gap, and every finer level would keep
-  // spanning it. -1 where the edge spans no detour, the path is longer than
-  // kMaxDetour times the chord, or no vertex of it is free for v.
-  int32_t middle_of_detour(int32_t v, int32_t from, int32_t to);
-
-  // Site s may move to point i (in Lloyd's steps) without an edge of the
-  // current level's mesh coming to span a detour that did not: a site moved
-  // to the far wall of a pocket would bridge it again.
-  bool keeps_off_detours(int32_t s, int32_t i);
 
   // Starts new vertex v on the surface at its parent edge's midpoint
   // (§III-B, Fig. 4b-c): the free input vertex nearest the line through the
@@ -108,8 +79,7 @@ class Refiner {
   // the chord's midpoint cuts across curved parts. Measured at 4 levels with
   // the defaults, against the domain first: igea 86.07 -> 87.74 dB, the
   // bunny 79.97 -> 80.92 dB with 13 folded triangles -> 6, armadillo 74.23 ->
-  // 75.02, nefertiti 76.80 -> 77.24. Before both, where the edge spans a
-  // detour of the input: the middle of its path (middle_of_detour).
+  // 75.02, nefertiti 76.80 -> 77.24.
   Status place_new_vertex(int32_t v);
 
   struct SurfacePoint {
@@ -516,10 +486,7 @@ class Refiner {
   std::vector<int32_t> anchor_;   // per site (hierarchy vertex): its input vertex
   std::vector<int32_t> site_of_;  // per input vertex: the site on it, or -1
   size_t midpoint_vertices_ = 0;  // vertices placed off the input so far
-  size_t detour_vertices_ = 0;    // new vertices put in the middle of a detour (middle_of_detour)
   size_t surface_vertices_ = 0;   // new vertices put on the input surface between its vertices
-  std::vector<double> path_dist_;  // path_length's, all infinite and -1 after clear_path()
-  std::vector<int32_t> path_prev_, path_touched_;
   std::vector<std::array<int32_t, 3>> triangles_;  // the current level's mesh
   Adjacency neighbors_, around_;
   std::vector<std::vector<std::array<int32_t, 3>>> coarse_triangles_;  // levels below the current one

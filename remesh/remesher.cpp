@@ -411,7 +411,6 @@ Status Remesher::refine_levels() {
   if (options_.tolerance_db > 0.0)
     refine_options.tolerance = bounding_box_diagonal(mesh_.positions) * std::pow(10.0, -options_.tolerance_db / 20.0);
   refine_options.max_lloyd_iterations = options_.max_lloyd_iterations;
-  refine_options.follow_detours = options_.follow_detours;
   refine_options.progress = options_.progress;
   SRCODEC_ASSIGN_OR_RETURN(refined_, refine(input_, base_, refine_options, &rep_.levels));
   rep_.seconds_refine = seconds_since(start);

@@ -69,16 +69,12 @@ struct RemeshOptions {
   bool untangle = true;
   // With untangle, after it: where triangles are still folded or in a
   // pleat, the splits of the level below the finest around them undone
-  // (remesh/unsplit_tangles.h; ours), then untangled again. (The CLI's
-  // encode and rd turn it off: it costs bytes, docs/remesh_design.md, "Unsplitting".)
-  bool unsplit_tangles = true;
+  // (remesh/unsplit_tangles.h; ours), then untangled again. Off for every
+  // caller: an adaptive last level costs its refinement flags in every
+  // prefix of a coded file (docs/remesh_design.md, "Unsplitting").
+  bool unsplit_tangles = false;
   // Whether the unsplitting runs: it needs the fit and the untangling.
   bool unsplits() const { return fit_surface && untangle && unsplit_tangles; }
-  // Follow the input into pockets, creases and gaps narrower than an edge
-  // instead of bridging them (RefineOptions::follow_detours; ours, off by
-  // default): the bunny at 5 levels no longer swings by 8 dB with the base
-  // size, but beast, whose lips and claws are thin flaps, loses 4 dB.
-  bool follow_detours = false;
   // With fit_surface, last: the finest level's own vertices at slivers move
   // along their tangent plane where that makes the triangles around them
   // rounder (remesh/relax_slivers.h; ours). Fewer triangles turn over after

@@ -426,65 +426,6 @@ TEST(Remesher, NarrowSlitStaysOpen) {
   EXPECT_GT(psnr_against(square, fine), 70.0);
 }
 
-// An open square with a trench across it, `depth` deep and `width` wide
-// (narrower than a base edge): a grid over the profile's length, `across`
-// cells along it and `along` cells the other way.
-TriangleMesh trenched_square(double depth, double width, int across, int along) {
-  const double flat = 0.5 - 0.5 * width, length = 2.0 * flat + 2.0 * depth + width;
-  auto profile = [&](double u) -> std::pair<double, double> {  // (x, z) at length u along the profile
-    if (u <= flat) return {u, 0.0};
-    if ((u -= flat) <= depth) return {flat, -u};
-    if ((u -= depth) <= width) return {flat + u, -depth};
-    if ((u -= width) <= depth) return {flat + width, -depth + u};
-    return {flat + width + u - depth, 0.0};
-  };
-  TriangleMesh m;
-  for (int j = 0; j <= along; ++j)
-    for (int i = 0; i <= across; ++i) {
-      const auto [x, z] = profile(length * i / across);
-      m.positions.emplace_back(x, static_cast<double>(j) / along, z);
-    }
-  for (int j = 0; j < along; ++j)
-    for (int i = 0; i < across; ++i) {
-      const int32_t a = j * (across + 1) + i, b = a + 1, c = a + across + 2, d = a + across + 1;
-      m.triangles.push_back({a, b, c});
-      m.triangles.push_back({a, c, d});
-    }
-  return m;
-}
-
-// A trench deeper than a base edge and a tenth as wide: base edges run from
-// wall to wall across it, and their new vertices, put near the chord's
-// midpoint, leave triangles cutting across it at every level (a bridge).
-// The new vertex of an edge whose path along the input is a detour through
-// the open goes to the middle of that path instead, and Lloyd keeps edges
-// from becoming such detours: every triangle over the trench lies on its
-// floor. Without that: 25 of the 128 triangles over it cut across higher
-// up, 53.4 dB.
-TEST(Remesher, FollowsANarrowTrench) {
-  const TriangleMesh input = trenched_square(0.3, 0.02, 200, 100);
-  RemeshOptions options = small_options(3, 20, true);
-  options.follow_detours = true;
-  RemeshReport report;
-  auto srm = remesh(input, options, &report);
-  ASSERT_TRUE(srm.ok()) << srm.status().message();
-  expect_semi_regular(srm.value());
-  size_t detours = 0;
-  for (const auto& level : report.levels) detours += level.detour_vertices;
-  EXPECT_GT(detours, 0u);
-  const TriangleMesh fine = srm->level_mesh(3);
-  size_t over = 0, across = 0;
-  for (const auto& t : fine.triangles) {
-    const Eigen::Vector3d c = (fine.positions[t[0]] + fine.positions[t[1]] + fine.positions[t[2]]) / 3.0;
-    if (std::abs(c.x() - 0.5) > 0.01) continue;
-    ++over;
-    across += c.z() > -0.25;
-  }
-  EXPECT_GT(over, 100u);
-  EXPECT_EQ(across, 0u);
-  EXPECT_GT(psnr_against(input, fine), 57.0);
-}
-
 TEST(Remesher, DeterministicOutput) {
   const TriangleMesh mesh = test::icosphere(4, 2.0);
   RemeshOptions o = small_options(2, 30, false);

@@ -142,7 +142,7 @@ Command add_encode_command(CommandLine& cli) {
       "stream's rate-distortion curve (README: The default rate)");
   cmd.positional("mesh", o->input, "Input mesh (OBJ, PLY, OFF, STL)");
   cmd.option("-o,--output", o->output, "The .srm file to write").required();
-  add_remesh_flags(cmd, o->remesh, /*for_coding=*/true);
+  add_remesh_flags(cmd, o->remesh);
   auto& bpv = cmd.option("--bpv", o->bpv, "Rate: bits per input vertex").finite().positive();
   auto& bytes = cmd.option("--bytes", o->bytes, "Rate: file size in bytes").positive();
   auto& psnr = cmd.option("--psnr", o->psnr, "Rate: the smallest file reaching this PSNR (dB) against the input")

@@ -494,7 +494,7 @@ Command add_rd_command(CommandLine& cli) {
   Subcommand& cmd = cli.add_command("rd", "Rate-distortion curves of srcodec and Draco on one mesh, with BD-rate");
   cmd.positional("mesh", o->input, "Input mesh (OBJ, PLY, OFF, STL)");
   cmd.option("-o,--output", o->out_dir, "Folder for rd.csv, rd.png and summary.json (created if missing)").required();
-  add_remesh_flags(cmd, o->remesh, /*for_coding=*/true);
+  add_remesh_flags(cmd, o->remesh);
   cmd.option("--points", o->points, "srcodec rates, log-spaced from the base mesh alone to the whole stream")
       .range(2, 100)
       .show_default();

@@ -35,7 +35,6 @@ void add_level_fields(const RefineLevelReport& lr, JsonWriter& j) {
       .field("lloyd_iterations", lr.lloyd_iterations)
       .field("moves", lr.moves)
       .field("refused_folds", lr.refused_folds)
-      .field("refused_detours", lr.refused_detours)
       .field("folded_triangles", lr.folded_triangles)
       .field("coarse_folded_triangles", lr.coarse_folded_triangles)
       .field("folded_by_nearest_input", lr.folded_by_nearest_input)
@@ -43,7 +42,6 @@ void add_level_fields(const RefineLevelReport& lr, JsonWriter& j) {
       .field("untangled", lr.untangled)
       .field("midpoint_vertices", lr.midpoint_vertices)
       .field("surface_vertices", lr.surface_vertices)
-      .field("detour_vertices", lr.detour_vertices)
       .field("off_input_moves", lr.off_input_moves)
       .field("smoothed", lr.smoothed)
       .field("midpoint_resets", lr.midpoint_resets)
@@ -77,7 +75,6 @@ JsonWriter summary_json(const RemeshCliOptions& o, const TriangleMesh& input, co
       .field("fit_folded_by_nearest_input", report.fit.folded_by_nearest_input)
       .field("fit_pleats", report.fit.pleats)
       .field("untangle", options.fit_surface && options.untangle)
-      .field("follow_detours", options.follow_detours)
       .field("untangle_moved", report.untangle.moved)
       .field("untangle_joint_moved", report.untangle.joint_moved)
       .field("untangle_rounds", report.untangle.rounds)
@@ -217,13 +214,14 @@ Status run_remesh(const RemeshCliOptions& o) {
 
 }  // namespace
 
-Command add_remesh_command(CommandLine& cli) {
+Command add_remesh_command(CommandLine& cli, bool experiment) {
   auto o = std::make_shared<RemeshCliOptions>();
   Subcommand& cmd = cli.add_command(
       "remesh", "Adaptive semi-regular remeshing (Voronoi/Lloyd, Kammoun-Payan-Antonini) with per-level error");
   cmd.positional("mesh", o->input, "Input mesh (OBJ, PLY, OFF, STL)");
   cmd.option("-o,--output", o->output, "Finest level, written as OBJ or PLY").required();
   add_remesh_flags(cmd, o->remesh);
+  if (experiment) add_experiment_flags(cmd, o->remesh);
   cmd.option("--write-levels", o->write_levels, "Also write every level to PREFIX_l<level>.obj");
   cmd.option("--samples", o->samples, "Samples per surface for the error figures")
       .range(size_t{1000}, size_t{100000000})
