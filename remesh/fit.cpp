@@ -19,8 +19,8 @@ namespace {
 
 // The order in which to search the samples' nearest triangles: along a
 // Z-order curve of a 1024^3 grid over their bounding box, so that
-// consecutive searches visit the same part of the tree (on ogre this halves
-// the search). Each sample's result is its own: the order changes no output.
+// consecutive searches visit the same part of the tree (faster on large
+// meshes). Each sample's result is its own: the order changes no output.
 // 32-bit indices: 4 samples per vertex reach 2^32 only past a billion vertices.
 std::vector<uint32_t> spatial_order(const std::vector<Eigen::Vector3d>& points) {
   std::vector<uint32_t> order(points.size());

@@ -12,10 +12,7 @@
 // measures it: from samples of the input to the remesh, and from points of
 // the remesh's triangles to the input. The metric's PSNR is the worse of the
 // two ways; the input's samples alone leave out the parts of the remesh that
-// no sample is nearest to. With the remesh's points weighted twice, the fit
-// gained 0.3 to 0.8 dB more at 4 levels than with the input's samples alone
-// on every corpus mesh but beast_tri, which lost 0.13 dB (twentieth session,
-// docs/remesh_quality.md).
+// no sample is nearest to, and the fit would not pull them in.
 #pragma once
 
 #include <Eigen/Core>
@@ -39,7 +36,7 @@ struct FitOptions {
   size_t samples_per_vertex = 4;  // input surface samples, spread by area
   // The weight of the remesh's points measured to the input against the
   // input's samples measured to the remesh, per unit of area (0: the input's
-  // samples alone, the fit before the twentieth session).
+  // samples alone).
   double remesh_weight = 2.0;
   uint64_t seed = 1;
 };

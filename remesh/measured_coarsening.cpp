@@ -29,11 +29,10 @@ double grid_mean(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen
 // Per triangle: its area times its mean squared distance to the input (0 for
 // the triangles `skip` marks), by the centroids of its 2 x 2 sub-triangles
 // (4 x 4 for those `larger` marks).
-// The error is heavy-tailed (on nefertiti 1% of the remesh's area holds 90%
-// of it, where a flap stands off the input): the triangles holding the
-// largest 2% of it, whose distance varies most across them, are measured
-// again on an 8 x 8 grid, with the exact search (4 random samples per
-// triangle put nefertiti's error 8% off).
+// The error is heavy-tailed (a flap standing off the input can hold most
+// of it): the triangles holding the largest 2% of it, whose distance varies
+// most across them, are measured again on an 8 x 8 grid, with the exact
+// search (a few random samples per triangle put the error off).
 std::vector<double> squared_to_input(const std::vector<Eigen::Vector3d>& x,
                                      const std::vector<std::array<int32_t, 3>>& triangles, const std::vector<char>& skip,
                                      const NearestTriangle& input, const std::vector<char>* larger = nullptr) {
@@ -415,8 +414,7 @@ StatusOr<SemiRegularMesh> coarsen_by_measured_error(const TriangleMesh& input, c
   // the input (those that chose the splits to undo favour their own
   // choice; on the smooth scans the remesh's side decides, and nothing
   // changed), and the unsplit triangles measured on a grid as fine as
-  // their children's (2 x 2 put the bunny's loss at 0.22 dB for 0.26; the
-  // metric's, at 1M samples, was 0.27).
+  // their children's (a coarser grid puts the loss below the metric's).
   auto loss_of = [&](const std::vector<Eigen::Vector3d>& p, const std::vector<std::array<int32_t, 3>>& finest,
                      const std::vector<char>& unsplit) {
     const std::vector<double> sq = squared_to_input(p, finest, std::vector<char>(finest.size(), 0), near_input, &unsplit);
@@ -440,8 +438,8 @@ StatusOr<SemiRegularMesh> coarsen_by_measured_error(const TriangleMesh& input, c
     // The finest level's triangles left unsplit: candidates now whole
     // (their corners are coarser than the children around them; after
     // deepening, those of the deeper splits undone were fitted to the levels
-    // asked, and fitting them again to the mesh around them gains: igea at 5
-    // levels, 60.5% -> 59.7% of the triangles at the same loss).
+    // asked, and fitting them again to the mesh around them gains: fewer
+    // triangles at the same loss).
     std::vector<int32_t> node_of;
     r.mesh.hierarchy.level_triangles(r.mesh.levels, &node_of);
     const auto& now = r.mesh.hierarchy.nodes();
@@ -467,8 +465,8 @@ StatusOr<SemiRegularMesh> coarsen_by_measured_error(const TriangleMesh& input, c
   SRCODEC_ASSIGN_OR_RETURN(Choice first, coarsened(options.max_loss_db));
   Result best = made(std::move(first), &rep.estimated_loss_before_refit_db);
   // The refitted mesh, measured whole, is further from the limit than the
-  // choice's estimate (by the pieces of each candidate, which is cautious:
-  // the bunny's 0.40 dB choice measured 0.29 before its refit, 0.15 after):
+  // choice's estimate (by the pieces of each candidate, which is cautious,
+  // and the refit gains more):
   // undo more splits, budgeting as much more as the gap to whole_margin x
   // the limit (half as much after a try that went past it), while the
   // refitted result stays within that.

@@ -76,10 +76,7 @@ class Refiner {
   // the surface. The paper's dyadic point on the base domain comes second:
   // where the base mesh's parameterization is stretched (around holes, on
   // thin ridges) it lies rings away from the edge, and the nearest point to
-  // the chord's midpoint cuts across curved parts. Measured at 4 levels with
-  // the defaults, against the domain first: igea 86.07 -> 87.74 dB, the
-  // bunny 79.97 -> 80.92 dB with 13 folded triangles -> 6, armadillo 74.23 ->
-  // 75.02, nefertiti 76.80 -> 77.24.
+  // the chord's midpoint cuts across curved parts.
   Status place_new_vertex(int32_t v);
 
   struct SurfacePoint {
@@ -149,7 +146,7 @@ class Refiner {
   // Boundary site s (of the current level's mesh) may take boundary point i
   // only between its boundary neighbours along the input's loop, the way the
   // level's boundary edges run: a site taken from across a narrow hole
-  // (the bunny's slits) makes the remesh's boundary zigzag across it, with
+  // (a slit) makes the remesh's boundary zigzag across it, with
   // triangles over the hole. True wherever that order is not known (a
   // point off the input's vertices, a loop that is not a simple cycle, a
   // site whose own point is already out of order).
@@ -168,15 +165,14 @@ class Refiner {
   // Spikes, after the repairs: an interior site whose edges are on average
   // more than three times as long as its neighbours' (their median), one
   // that took an input vertex on another sheet while its neighbours stayed
-  // on this one (the bunny at 5 levels: three sites between its ears held
-  // 61% of the error, none of them folded). Such a site moves to the first
+  // on this one: a spike that folds nothing yet can hold most of the error.
+  // Such a site moves to the first
   // free input vertex near its neighbours' mean that halves its edges, when
   // no more triangles fold around it and the input its old triangles
   // reached (within its longest edge) stays covered: each such input vertex
   // within a quarter of the neighbours' median edge of the remesh, or of
-  // twice its distance now. A site that is a thin part's only cover stays
-  // (moved before the repairs and without that check, the spikes' moves
-  // left a part of armadillo's hand 1.5% of the diagonal from the remesh).
+  // twice its distance now. A site that is a thin part's only cover stays:
+  // moving it would leave that part far from the remesh.
   // Returns the sites moved.
   size_t mend_spikes();
 
@@ -186,15 +182,12 @@ class Refiner {
   // Lloyd cannot undo every fold the initial placement made, nor the pleats:
   // rounds of repairs, then the midpoint resets of this level's new sites
   // where folds remain, then the rounds once more. A reset patch comes back
-  // with fewer folds but can leave a sliver that one site's move undoes
-  // (4 levels, defaults: ogre 143 + 38 folded -> 103 + 28, recount 1355 ->
-  // 1336; beast 147 + 30 -> 140 + 29, 625 -> 624; the bunny's recount 3 ->
-  // 2 and pleats 2 -> 0; the other corpus meshes unchanged). Where folds
+  // with fewer folds but can leave a sliver that one site's move undoes.
+  // Where folds
   // are still left on the last level, the patches around them are redrawn
   // in a map of the input (reparam_patch), then the rounds run again. On
-  // the last level only: on a coarser one it moved sites that the levels
-  // above then refined from, and nefertiti's adaptive 5-level runs lost
-  // 0.5-1.2 dB that way (uniform 5 levels gained 0.4).
+  // the last level only: on a coarser one it moves sites that the levels
+  // above then refine from, which costs the adaptive runs.
   void untangle(int32_t level, RefineLevelReport& lr);
 
   // The three repairs, in rounds while they leave fewer folds and pleats (a
@@ -311,11 +304,10 @@ class Refiner {
   // does. Kept only when the patch has fewer folds (every level), or as
   // many and fewer pleats, and the input under it is no farther from the
   // patch (RMS) than 1.1 times what it was: without that bound a patch on
-  // beast's thin flaps untangled its count at the price of its shape (74.62
-  // -> 51.54 dB). Returns the sites moved; 0 when the patch or the input
-  // under it is not a disk, or when the patch holds a triangle not split on
-  // this level (a coarser leaf or the closure's: in adaptive runs, redrawn
-  // with the rest, they cost armadillo 6.5 dB at --threshold 16).
+  // thin flaps untangles its count at the price of its shape. Returns the
+  // sites moved; 0 when the patch or the input under it is not a disk, or
+  // when the patch holds a triangle not split on this level (a coarser leaf
+  // or the closure's, which redrawn with the rest cost adaptive runs dearly).
   size_t reparam_patch(const std::vector<int32_t>& patch, int32_t level);
 
   // The input surface under a patch, mapped onto the unit disk: input
@@ -448,14 +440,13 @@ class Refiner {
   // relaxed triangle do not tile its footprint, and a flat part's input lies
   // outside its parent triangle by up to an edge. But the triangle for the
   // input's boundary vertices: a merged triangle's boundary edge cuts across
-  // the input's boundary between its corners (a flat square lost its
-  // corners, 72.1 -> 45.8 dB, where the plane saw no error). The kept splits are
+  // the input's boundary between its corners (a flat square loses its
+  // corners where the plane sees no error). The kept splits are
   // replayed into a new hierarchy, which adds the balance and closure splits
   // they need, and its sites keep the places the full refinement gave them.
-  // Deciding level by level before each relaxation instead (sessions 2-11),
-  // each adaptive run relaxed into its own tangles at thin parts, and the
-  // adaptive runs stayed 0.6-2.7 dB below uniform 5 levels on armadillo and
-  // nefertiti however many triangles they kept.
+  // Deciding level by level before each relaxation instead, each adaptive
+  // run relaxes into its own tangles at thin parts and stays below the
+  // uniform refinement however many triangles it keeps.
   //
   // With threshold_after_uniform, Eq. 5 first: a split node whose g(t) at
   // its level was within the threshold becomes a leaf, and all below it

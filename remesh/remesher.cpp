@@ -22,8 +22,8 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 // Splits `total` base vertices over components in proportion to their
 // vertex counts, at least min(4, vertices) each. Not by area: what limits a
-// component is how many input vertices its Voronoi cells can hold (ogre's
-// coarse, large pieces ran out of vertices at level 2 when shared by area).
+// component is how many input vertices its Voronoi cells can hold (coarse,
+// large pieces run out of vertices when shared by area).
 std::vector<size_t> share_sites(const std::vector<ComponentMesh>& parts, size_t total) {
   size_t sum = 0;
   for (const ComponentMesh& part : parts) sum += part.mesh.positions.size();
@@ -39,32 +39,23 @@ std::vector<size_t> share_sites(const std::vector<ComponentMesh>& parts, size_t 
 // Voronoi cells flatter than this (their vector area over their area) are
 // split across their normals before the base mesh is built (LbgOptions::
 // min_flatness): a cell that wraps around a thin part makes base triangles
-// that cut through it, and no later level recovers. At 4 levels with the
-// default base size, against no splitting (2026-11-28): lionstatue's tail
-// 74.94 -> 81.76 dB and 18 + 5 folded triangles -> 0 (11 sites added; the
-// base mesh grows by 3, as the collapses keep fewer non-sites);
-// bunny_npm 58.81 -> 63.54 dB and 24 + 6 -> 0; beast 68.54 -> 74.28 dB (but
-// 159 -> 234 folded); ogre 69.38 -> 70.98 (511 -> 376 folded); armadillo
-// 75.02 -> 74.68 (13 more sites, 0 -> 1 folded), stanford-bunny 80.92 ->
-// 80.86 (6 -> 9); fandisk, rocker-arm, nefertiti and igea unchanged. 0.5
-// also changed fandisk (-0.55 dB) and nefertiti (+1.2); 0.25 missed the
-// lion's tail.
+// that cut through it, and no later level recovers. The value is the one
+// that catches thin tails without changing smooth meshes
+// (docs/remesh_design.md, "Constants of remesh/ and what they measure").
 constexpr double kMinCellFlatness = 0.4;
 
 // --oversample auto: enough input vertices that the finest uniform level's
 // Voronoi cells hold about 8 each. Lloyd needs several vertices per cell to
-// move a site anywhere; on stanford-bunny, 3 levels over 1141 base vertices
-// reach 62.7 dB with 1.9 vertices per finest cell and 80.3 dB with 7.7.
+// move a site anywhere.
 constexpr double kAutoOversampleRatio = 4.0;
 // ... and that almost everywhere, not on average: the fraction of the area
-// allowed to stay coarser. ogre's low-poly pieces had 14% empty cells and
-// hundreds of folds at level 2 when only the average was checked.
+// allowed to stay coarser: low-poly pieces of a mesh leave empty cells and
+// folds when only the average is checked.
 constexpr double kCoarseAreaAllowed = 0.05;
 
 // ... but no more than 4 times the input's vertices or 1M, whichever is
 // more: the site selection and the collapses grow with the oversampled count
-// (igea at 5 levels: 2.1M vertices, 97 s and 79.5 dB; 537k vertices, 20 s and
-// 76.7 dB).
+// faster than the quality does.
 constexpr double kAutoBudgetFactor = 4.0;
 constexpr double kAutoBudgetFloor = 1e6;
 
@@ -103,8 +94,7 @@ int auto_steps(const TriangleMesh& part, size_t sites, int levels) {
   return steps;
 }
 // Below 2 input vertices per output vertex, most cells hold their site only:
-// Lloyd cannot move them and new vertices fold the mesh (beast, 2 levels
-// without oversampling: 13114 empty cells, 8041 folded triangles, 38.7 dB).
+// Lloyd cannot move them and new vertices fold the mesh.
 constexpr double kMinUniformRatio = 2.0;
 // The smallest default base mesh; a mesh with fewer vertices is its own base
 // mesh when the levels are fitted to it.
@@ -120,13 +110,8 @@ size_t default_base_vertices(size_t input_vertices, size_t components, int level
   const double v = static_cast<double>(input_vertices);
   // As many base vertices as the oversampling budget allows with about 8
   // input vertices per finest-level vertex, and no more than 1 per 24 input
-  // vertices. Measured on stanford-bunny: 124 base vertices and 4 levels give
-  // 58.8 dB, 537 give 74.2 dB (3 levels over 1559: 80.6 dB); on armadillo
-  // (14587 vertices), 228 base vertices (the old 1 per 64) give 65.5 dB at 4
-  // levels, 488 (this rule) 69.0 dB, 600 72.8 dB. Fewer input vertices per
-  // finest vertex hurt: 6 instead of 8 took the bunny from 79.3 to 71.8 dB and
-  // nefertiti from 75.5 to 71.5 dB (3.2 and 4.8 oversampled input vertices
-  // per finest vertex), though armadillo gained (72.0 dB).
+  // vertices: a larger base mesh stretches the parameterization less, and
+  // fewer input vertices per finest vertex leave Lloyd too little to move.
   const double budget = std::max(kAutoBudgetFactor * v, kAutoBudgetFloor);
   const double by_budget = budget / (8.0 * std::pow(4.0, std::max(levels, 0)));
   const double base = std::min(v / 24.0, by_budget);
@@ -283,12 +268,9 @@ void Remesher::raise_default_base() {
   // The default base size was planned on the oversampling budget; a small
   // input that got all three steps may hold more than planned: as many base
   // vertices as kSupportedRatio oversampled vertices per finest vertex
-  // allow, still at most one per 24 input vertices. On armadillo (14587
-  // vertices, 933442 oversampled) this takes the base from 488 to 561
-  // vertices at 4 levels (488 gave 69.0 dB, 560 74.5 dB, 608 71.5 dB).
-  // 6 instead of 6.5 also raised nefertiti's base, from 488 to 521, and
-  // took it from 75.5 to 71.8 dB (520 gave 76.4 dB: the quality swings by
-  // a few dB with the base size; measured 2026-11-28).
+  // allow, still at most one per 24 input vertices. The quality swings by a
+  // few dB with the base size; 6.5 is where the raise helps without starving
+  // the cells.
   const double supported = std::min(static_cast<double>(mesh_.positions.size()) / 24.0,
                                     static_cast<double>(rep_.oversampled_vertices) /
                                         (kSupportedRatio * std::pow(4.0, options_.levels)));
@@ -393,13 +375,9 @@ Status Remesher::refine_levels() {
   refine_options.levels = options_.levels;
   refine_options.threshold = options_.threshold;
   refine_options.uniform = options_.uniform;
-  // The threshold judged on a uniform refinement where the input supports
-  // one: at 5 levels, against the paper's order, armadillo eps 4 at 99% of
-  // uniform's triangles 69.36 -> 71.82 dB (uniform 72.20), nefertiti eps 16
-  // at 64% 73.06 -> 74.67 dB (uniform 75.61), the bunny eps 16 at 49%
-  // 68.41 -> 69.52 dB (uniform 67.14; both before boundary sites kept to
-  // their loops, which took them to 73.49 and 74.88), igea eps 16 at 58%
-  // 80.08 -> 79.28 dB (uniform 86.45; Eq. 5 is not geometric).
+  // Eq. 5 judged on a uniform refinement where the input supports one: each
+  // adaptive level relaxed on its own relaxes into worse tangles at thin
+  // parts, so the paper's order measures lower for as many triangles.
   refine_options.threshold_after_uniform = !options_.uniform && options_.levels > 0 && !too_few_for_uniform_;
   rep_.threshold_after_uniform = refine_options.threshold_after_uniform;
   if (!options_.uniform && options_.levels > 0 && too_few_for_uniform_) {
@@ -495,8 +473,8 @@ Status Remesher::coarsen(SemiRegularMesh* out, int32_t levels) {
 // the corners of the coarser levels' (a corner with no finest triangles
 // around it moves as its own levels ask). A pass is kept when it leaves
 // fewer tangled triangles, all levels counted; up to 4 passes of each
-// kind. (Fitting the corners left whole to the input again, as the
-// measured coarsening does, cost ogre 9 s a pass and 0.1 dB.)
+// kind. The corners left whole are not fitted to the input again (as the
+// measured coarsening does): that cost time and PSNR.
 Status Remesher::unsplit(SemiRegularMesh* out) {
   for (int kind = 0; kind < 2; ++kind)
     for (int pass = 0; pass < 4 && rep_.untangle.after.total() > 0; ++pass) {
@@ -579,14 +557,10 @@ StatusOr<SemiRegularMesh> Remesher::run(RemeshReport* report, bool fit_levels) {
   if (options_.unsplits() && out.levels > 0) SRCODEC_RETURN_IF_ERROR(unsplit(&out));
   // Last, where triangles stay tangled: one more untangling that also tries,
   // for each free vertex, the 128 input vertices nearest it and as many
-  // nearest its neighbours' centroid (UntangleOptions::wide_candidates). At
-  // the defaults, against none (folded + pleats, finest + coarser; PSNR at
-  // 1M samples, seeds 1 and 2): beast 14 + 14, 1 + 22 -> 8 + 12, 0 + 21 at
-  // 78.32 -> 78.33 dB; beast_tri 8 + 11, 1 + 17 -> 5 + 10, 0 + 15 at 75.66 ->
-  // 75.52; ogre 4 + 13, 1 + 23 -> 3 + 12, 0 + 23 at 75.52 -> 75.55. The same
-  // search in every pass left fewer finest folds (6, 3, 2) but moved far
-  // more vertices: beast 78.08, beast_tri 75.13, ogre 76.13 dB; 32 each
-  // instead of 128 left beast 12 + 13 (twenty-ninth session).
+  // nearest its neighbours' centroid (UntangleOptions::wide_candidates): an
+  // input vertex carries its own side, which can put a corner back on its
+  // neighbours' sheet. Only here, not in every pass: everywhere it moves far
+  // more vertices and costs PSNR.
   if (untangling && out.levels > 0 && rep_.untangle.after.total() > 0) {
     UntangleOptions wide;
     wide.wide_candidates = 128;

@@ -32,13 +32,15 @@ struct RemeshOptions {
   bool fit_levels = false;
   // Base mesh vertices over all components; 0 picks default_base_vertices.
   size_t base_vertices = 0;
-  double threshold = 0.0;  // Eq. 5's epsilon, in vertices of the oversampled input
-  bool uniform = false;    // split everything; the threshold is then unused
-  // Geometric criterion (RefineOptions::tolerance) as a PSNR in dB, the
-  // project's metric's scale: after the last level, a triangle's split is
-  // undone where the input's RMS distance to its plane is within the
-  // bounding-box diagonal x 10^(-dB/20). Applies with uniform or the
-  // threshold; 0 turns it off.
+  // The paper's adaptivity (Eq. 5): a triangle is split when each corner's
+  // Voronoi cell holds more than this many vertices of the oversampled input.
+  double threshold = 0.0;
+  bool uniform = false;  // split everything; the threshold is then unused
+  // Geometric criterion (RefineOptions::tolerance; ours, kept for the
+  // experiments that compare it with Eq. 5) as a PSNR in dB, the metric's
+  // scale: after the last level, a triangle's split is undone where the
+  // input's RMS distance to its plane is within the bounding-box diagonal x
+  // 10^(-dB/20). Applies with uniform or the threshold; 0 turns it off.
   double tolerance_db = 0.0;
   // Adaptive by measured error (remesh/measured_coarsening.h, ours): after
   // the uniform refinement and the fit, the last level's splits that gain
@@ -58,9 +60,9 @@ struct RemeshOptions {
   int max_lloyd_iterations = 10;  // per refinement level
   // After the refinement, move the vertices above the base mesh off the
   // input's vertices, along their normals, to centre the finest level's
-  // triangles on the input surface (remesh/fit.h; ours). Boundary vertices
-  // stay. Off: every vertex where the paper's method put it (a site on an
-  // input vertex, with the exceptions RefineLevelReport counts).
+  // triangles on the input surface (remesh/fit.h; ours): a site on an input
+  // vertex leaves the chord's sag between vertices. Boundary vertices stay.
+  // Off: every vertex where the paper's method put it (the paper's runs).
   bool fit_surface = true;
   // With fit_surface, last: move the vertices of the triangles still folded
   // or in a pleat to nearby places that leave fewer of them
@@ -77,8 +79,8 @@ struct RemeshOptions {
   bool unsplits() const { return fit_surface && untangle && unsplit_tangles; }
   // With fit_surface, last: the finest level's own vertices at slivers move
   // along their tangent plane where that makes the triangles around them
-  // rounder (remesh/relax_slivers.h; ours). Fewer triangles turn over after
-  // coding.
+  // rounder (remesh/relax_slivers.h; ours): slivers are where coding error
+  // turns triangles over.
   bool relax_slivers = true;
   RemeshProgressCallback progress;  // after each step (remesh/progress.h), may be empty
 };

@@ -94,7 +94,7 @@ size_t folded_triangles(const InputIndex& input, const TriangleMesh& out) {
   }
   // Off the input's vertices: new vertices put on the input surface where
   // the input is sparse, plus a few untangled sites (each counted in the
-  // level reports). Measured: 7.6% on nefertiti at 4 levels.
+  // level reports): well under the bound on the corpus at 4 levels.
   EXPECT_LE(off_input.size(), out.positions.size() / 5) << "more than 20% of the vertices are not input vertices";
   return folded;
 }
@@ -222,8 +222,9 @@ TriangleMesh bumpy_sphere() {
 // Where the new vertices start and how the cells are found decide how
 // closely the remesh follows a curved surface: a sphere with bumps, whose
 // base mesh of 40 vertices stretches the parameterization over each bump.
-// Measured 2026-11-28: 58.24 dB; 56.71 dB with the new vertices started at
-// the dyadic point on the base domain and cells found without the walk.
+// The bound sits between what the remesh gives and what it gives with the
+// new vertices started at the dyadic point on the base domain and the cells
+// found without the walk (about 1.5 dB lower).
 TEST(Remesher, FollowsABumpySurfaceClosely) {
   const TriangleMesh bumpy = bumpy_sphere();
   auto srm = remesh(bumpy, small_options(3, 40, true));
@@ -233,7 +234,7 @@ TEST(Remesher, FollowsABumpySurfaceClosely) {
 
 // The fit (RemeshOptions::fit_surface) moves the vertices above the base
 // mesh off the input to centre the triangles on the surface: the remesh
-// comes closer (measured 2026-11-30: 58.24 -> 63.13 dB), the base
+// comes closer (about 5 dB), the base
 // vertices stay input vertices, nothing folds that did not, and the same
 // run gives the same positions.
 TEST(Remesher, FitSurfaceCentresTheTrianglesOnTheInput) {
@@ -259,8 +260,7 @@ TEST(Remesher, FitSurfaceCentresTheTrianglesOnTheInput) {
 // The fit measures the distance both ways, as the metric does: the input's
 // samples to the remesh, and points of the remesh's triangles to the input
 // (FitOptions::remesh_weight). On the bumpy sphere's remesh the second way
-// brings it closer than the input's samples alone (measured 2026-11-30: the
-// paper's positions 58.24 dB, one way 62.59, both ways 63.13).
+// brings it closer than the input's samples alone (by about half a dB).
 TEST(Remesher, FitMeasuresBothWays) {
   const TriangleMesh bumpy = bumpy_sphere();
   auto plain = remesh(bumpy, small_options(3, 40, true));
@@ -311,8 +311,7 @@ TEST(Remesher, FitSurfaceKeepsTheBoundary) {
 
 // A ring whose waist is thinner than a base cell: cells there wrap around
 // it unless they are split (LbgOptions::min_flatness), and base triangles
-// then cut through the waist. Measured 2026-11-28: 43.62 dB, no folds (4
-// sites added); 39.08 dB with folded triangles without the split.
+// then cut through the waist, with folded triangles and about 4.5 dB less.
 TEST(Remesher, ThinWaistIsNotCutThrough) {
   const TriangleMesh ring = test::waisted_ring(400, 24);  // 9600 vertices
   RemeshReport report;
@@ -370,7 +369,7 @@ TEST(Oversample, SchemeNames) {
 
 // On a faceted input the remesh of the linearly oversampled input follows
 // the facets; the Butterfly one follows a rounded surface the input is not.
-// Measured 2026-11-28: 58.44 dB against 52.18.
+// The linear one comes about 6 dB closer.
 TEST(Remesher, LinearOversamplingFollowsAFacetedInput) {
   const TriangleMesh ball = test::icosphere(2, 1.0);  // 162 vertices, facets 0.3 across
   RemeshOptions o = small_options(2, 40, true);
@@ -501,7 +500,7 @@ TEST(Remesher, MaxLossKeepsTheSplitsThatGain) {
   EXPECT_GT(ar.coarsening.undone, 0u);
   EXPECT_LE(ar.coarsening.estimated_loss_db, 0.5);
   EXPECT_EQ(ar.coarsening.triangles_after, fine_a.triangles.size());
-  EXPECT_LT(fine_a.triangles.size(), fine_u.triangles.size() * 65 / 100);  // 56% (2026-11-30)
+  EXPECT_LT(fine_a.triangles.size(), fine_u.triangles.size() * 65 / 100);  // about 56%
   const double loss = psnr_against(square, fine_u) - psnr_against(square, fine_a);
   EXPECT_LT(loss, 0.6);  // 0.26, estimated 0.49
   EXPECT_GT(loss, -0.1);  // nothing is gained by undoing splits
@@ -535,11 +534,11 @@ TEST(Remesher, MaxLossKeepsTheSplitsThatGain) {
   EXPECT_EQ(plain_r.refit, 0u);
   for (const Eigen::Vector3d& q : p->level_mesh(3).positions) EXPECT_EQ(uniform_places.count({q.x(), q.y(), q.z()}), 1u);
   EXPECT_EQ(p->level_mesh(3).triangles, o->level_mesh(3).triangles);
-  // 73.32 and 73.35 dB (uniform 73.58); estimated, the loss went from 0.31
-  // to 0.26 dB.
+  // The refit brings the coarsened remesh closer to the input, and its
+  // estimated loss down.
   EXPECT_GT(psnr_against(square, o->level_mesh(3)), psnr_against(square, p->level_mesh(3)));
   EXPECT_LT(one_r.estimated_loss_db, one_r.estimated_loss_before_refit_db);
-  // 2677 triangles against 2744, at 73.28 dB (whole measure 0.32 dB).
+  // More passes undo more splits within the same loss.
   EXPECT_LE(passes_r.estimated_loss_db, 0.5);
   EXPECT_GT(passes_r.passes, 1);
   EXPECT_LT(m->level_mesh(3).triangles.size(), o->level_mesh(3).triangles.size());
@@ -738,10 +737,10 @@ size_t spike_vertices(const TriangleMesh& m, double ratio) {
   return spikes;
 }
 
-// The bunny at 5 levels (base of 150 vertices): three sites between its
-// ears took input vertices on the other ear's sheet while their neighbours
-// stayed on this one, and their long triangles held 61% of the error (74.9
-// dB by `srcodec remesh`); mend_spikes brings them back (79.4 dB).
+// At 5 levels over a base of 150 vertices, sites between the ears take input
+// vertices on the other ear's sheet while their neighbours stay on this one,
+// and their long triangles hold most of the error; mend_spikes brings them
+// back.
 TEST(Remesher, BunnyEarsHaveNoSpikes) {
   if (!test::have_corpus()) GTEST_SKIP() << "corpus not found";
   auto input = read_triangle_mesh(test::corpus_path("stanford-bunny.obj"));
@@ -760,13 +759,11 @@ TEST(Remesher, BunnyEarsHaveNoSpikes) {
   EXPECT_GT(psnr_against(input.value(), finest), 77.0);
 }
 
-// The untangling (RemeshOptions::untangle, after the fit) on ogre, whose
-// thin pieces fold the most: measured 2026-11-30 at this setting, the
-// finest level's folds and pleats 34 + 37 -> 5 + 1 and the coarser level's
-// 24 + 61 -> 10 + 38, for 60.32 -> 60.07 dB (the moves change the surface
-// where it is farthest from the input; at the default 4 levels ogre gains
-// 0.3 dB). Its count is the test's own recount of the output, and it starts
-// from the fit's.
+// The untangling (RemeshOptions::untangle, after the fit) on a mesh whose
+// thin pieces fold the most: it takes most of the finest level's folds and
+// pleats away for a small change in PSNR (the moves change the surface
+// where it is farthest from the input). Its count is the test's own recount
+// of the output, and it starts from the fit's.
 TEST(Remesher, UntangleUnfoldsOgresThinPieces) {
   if (!test::have_corpus()) GTEST_SKIP() << "corpus not found";
   auto input = read_triangle_mesh(test::corpus_path("ogre.obj"));
@@ -871,10 +868,9 @@ TEST_P(CorpusTopology, KeepsTopologyWithoutFolds) {
   EXPECT_EQ(out.components, in.components);
   EXPECT_EQ(out.boundary_loops, in.boundary_loops);
   EXPECT_EQ(out.genus, in.genus);
-  // The goal is none. Measured at this setting (2026-11-28): fandisk 0,
-  // lionstatue 1, stanford-bunny 0, beast 15, ogre 43 (0.3% of its level-2
-  // triangles, on its thin low-poly pieces); the bound catches a regression
-  // to the hundreds and thousands seen before the untangling step.
+  // The goal is none. At this setting the corpus meshes leave from none to
+  // a few tenths of a percent (on thin low-poly pieces); the bound of 1%
+  // catches a regression to hundreds or thousands.
   const TriangleMesh finest = srm->level_mesh(2);
   const TriangleMesh oversampled_input = oversampled(input.value(), report.component_oversample_steps);
   const InputIndex ran_on(oversampled_input);
