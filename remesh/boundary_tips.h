@@ -1,11 +1,10 @@
 // Sites at the tips of the input's narrow holes (ours, not in the paper).
 //
-// The stanford-bunny's underside has slits: holes narrower than a base
-// edge. LBG's cells do not see them, so the base mesh's boundary can run
+// Scans can have slits: holes narrower than a base edge. LBG's cells do not see them, so the base mesh's boundary can run
 // from one side of a slit to the other with no vertex at its tip; the
 // finer levels then either cut across the tip (triangles over the hole,
-// up to 2.4 mm off the input on the bunny, 61% of a remesh's squared error)
-// or fan around it in long sheared triangles that fold. A site at each
+// far off the input, which can hold most of a remesh's squared error) or
+// fan around it in long sheared triangles that fold. A site at each
 // tip makes the base boundary turn there.
 #pragma once
 

@@ -9,6 +9,7 @@
 #include <limits>
 #include <nanoflann.hpp>
 
+#include "remesh/folds.h"
 #include "remesh/geometry.h"
 #include "remesh/nearest_triangle.h"
 #include "remesh/point_cloud.h"
@@ -18,8 +19,8 @@ namespace {
 
 // The order in which to search the samples' nearest triangles: along a
 // Z-order curve of a 1024^3 grid over their bounding box, so that
-// consecutive searches visit the same part of the tree (on ogre this halves
-// the search). Each sample's result is its own: the order changes no output.
+// consecutive searches visit the same part of the tree (faster on large
+// meshes). Each sample's result is its own: the order changes no output.
 // 32-bit indices: 4 samples per vertex reach 2^32 only past a billion vertices.
 std::vector<uint32_t> spatial_order(const std::vector<Eigen::Vector3d>& points) {
   std::vector<uint32_t> order(points.size());
@@ -49,84 +50,97 @@ std::vector<uint32_t> spatial_order(const std::vector<Eigen::Vector3d>& points) 
   return order;
 }
 
-// The pairs of triangles that share an edge.
-std::vector<std::pair<int32_t, int32_t>> neighbour_pairs(const std::vector<std::array<int32_t, 3>>& triangles) {
-  std::vector<std::array<int32_t, 3>> edges;  // lower vertex, higher vertex, triangle
-  edges.reserve(3 * triangles.size());
-  for (size_t t = 0; t < triangles.size(); ++t)
-    for (int c = 0; c < 3; ++c) {
-      const auto [a, b] = std::minmax(triangles[t][c], triangles[t][(c + 1) % 3]);
-      edges.push_back({a, b, static_cast<int32_t>(t)});
+// Each input sample's signed distance to its nearest triangle of `fine`,
+// shared among that triangle's corners by the barycentric coordinates of its
+// nearest point there: added to `sum` (weighted) and `mass` (the weights).
+void add_sample_offsets(const std::vector<Eigen::Vector3d>& x, const std::vector<std::array<int32_t, 3>>& fine,
+                        const std::vector<Eigen::Vector3d>& samples, const std::vector<uint32_t>& search_order,
+                        std::vector<double>* sum, std::vector<double>* mass) {
+  std::vector<int32_t> owner(samples.size());
+  std::vector<Eigen::Vector3d> weight(samples.size());
+  std::vector<double> offset_of(samples.size());
+  const NearestTriangle nearest(x, fine);
+  // Each sample's nearest triangle, where on it, and its signed distance
+  // from it.
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, samples.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t o = r.begin(); o != r.end(); ++o) {
+      const size_t i = search_order[o];
+      const Eigen::Vector3d& q = samples[i];
+      const NearestTriangle::Hit hit = nearest(q);
+      const int32_t best_t = hit.triangle;
+      const Eigen::Vector3d& best_c = hit.point;
+      owner[i] = best_t;
+      if (best_t < 0) continue;
+      const auto& tri = fine[best_t];
+      const Eigen::Vector3d normal = triangle_normal(x, tri);
+      const double len = normal.norm();
+      if (!(len > 0.0)) {
+        owner[i] = -1;
+        continue;
+      }
+      weight[i] = barycentric(best_c, x[tri[0]], x[tri[1]], x[tri[2]]).cwiseMax(0.0);
+      offset_of[i] = (q - best_c).dot(normal) / len;
     }
-  std::sort(edges.begin(), edges.end());
-  std::vector<std::pair<int32_t, int32_t>> out;
-  for (size_t i = 0; i + 1 < edges.size(); ++i)
-    if (edges[i][0] == edges[i + 1][0] && edges[i][1] == edges[i + 1][1]) out.emplace_back(edges[i][2], edges[i + 1][2]);
-  return out;
-}
-
-}  // namespace
-
-FoldCounter::Sides::Sides(const TriangleMesh& mesh)
-    : normals_(unit_vertex_normals(mesh.positions, mesh.triangles)),
-      cloud_{mesh.positions},
-      tree_(3, cloud_, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {
-  tree_.buildIndex();
-}
-
-Eigen::Vector3d FoldCounter::Sides::operator()(const Eigen::Vector3d& p) const {
-  uint32_t i = 0;
-  double d2 = 0.0;
-  return tree_.knnSearch(p.data(), 1, &i, &d2) == 1 ? normals_[i] : Eigen::Vector3d::Zero().eval();
-}
-
-std::vector<Eigen::Vector3d> FoldCounter::Sides::of(const std::vector<Eigen::Vector3d>& points) const {
-  std::vector<Eigen::Vector3d> out(points.size());
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t v = r.begin(); v != r.end(); ++v) out[v] = (*this)(points[v]);
   });
-  return out;
+  for (size_t i = 0; i < samples.size(); ++i) {
+    if (owner[i] < 0) continue;
+    for (int c = 0; c < 3; ++c) {
+      const int32_t v = fine[owner[i]][c];
+      (*sum)[v] += weight[i][c] * offset_of[i];
+      (*mass)[v] += weight[i][c];
+    }
+  }
 }
 
-std::vector<uint32_t> FoldCounter::Sides::nearest(const Eigen::Vector3d& p, size_t k) const {
-  std::vector<uint32_t> out(k);
-  std::vector<double> d2(k);
-  out.resize(tree_.knnSearch(p.data(), k, out.data(), d2.data()));
-  return out;
-}
-
-namespace {
-
-// Not folded: facing the way of the corners' sides.
-bool faces_out(const std::vector<Eigen::Vector3d>& p, const std::vector<Eigen::Vector3d>& side,
-               const std::array<int32_t, 3>& t) {
-  return facing(p, side, t) > kFoldedFacing;
+// Undoes the moves around any triangle (of any level) that would turn by
+// 60 degrees or more, or come to face against the input, and around two
+// neighbours that would pleat, until none does. Returns the moves undone.
+size_t undo_tangling_moves(const std::vector<std::vector<std::array<int32_t, 3>>>& levels,
+                           const std::vector<std::array<int32_t, 3>>& fine,
+                           const std::vector<std::pair<int32_t, int32_t>>& neighbours,
+                           const std::vector<Eigen::Vector3d>& before, const std::vector<Eigen::Vector3d>& side_before,
+                           std::vector<Eigen::Vector3d>* positions, std::vector<Eigen::Vector3d>* sides,
+                           std::vector<char>* moved_out) {
+  std::vector<Eigen::Vector3d>& x = *positions;
+  std::vector<Eigen::Vector3d>& side = *sides;
+  std::vector<char>& moved = *moved_out;
+  size_t refused = 0;
+  auto pleated = [&](const std::vector<Eigen::Vector3d>& p, int32_t t, int32_t u) {
+    return pleat(triangle_normal(p, fine[t]), triangle_normal(p, fine[u]));
+  };
+  auto undo = [&](const std::array<int32_t, 3>& tri) {
+    bool any = false;
+    for (int32_t v : tri)
+      if (moved[v]) {
+        x[v] = before[v];
+        side[v] = side_before[v];
+        moved[v] = 0;
+        ++refused;
+        any = true;
+      }
+    return any;
+  };
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (const auto& [t, u] : neighbours) {
+      const auto &a = fine[t], &b = fine[u];
+      if (!moved[a[0]] && !moved[a[1]] && !moved[a[2]] && !moved[b[0]] && !moved[b[1]] && !moved[b[2]]) continue;
+      if (pleated(x, t, u) && !pleated(before, t, u)) changed |= undo(a) | undo(b);
+    }
+    for (size_t k = 0; k < levels.size(); ++k)
+      for (const auto& tri : levels[k]) {
+        if (!moved[tri[0]] && !moved[tri[1]] && !moved[tri[2]]) continue;
+        const Eigen::Vector3d was = triangle_normal(before, tri), now = triangle_normal(x, tri);
+        if (now.dot(was) > 0.5 * now.norm() * was.norm() &&
+            (!folded(x, side, tri) || folded(before, side_before, tri)))
+          continue;
+        changed |= undo(tri);
+      }
+  }
+  return refused;
 }
 
 }  // namespace
-
-FoldCount count_by_sides(const std::vector<Eigen::Vector3d>& positions, const std::vector<Eigen::Vector3d>& side,
-                         const std::vector<std::array<int32_t, 3>>& triangles, std::vector<char>* marked) {
-  return count_by_sides(positions, side, triangles, neighbour_pairs(triangles), marked);
-}
-
-FoldCount count_by_sides(const std::vector<Eigen::Vector3d>& positions, const std::vector<Eigen::Vector3d>& side,
-                         const std::vector<std::array<int32_t, 3>>& triangles,
-                         const std::vector<std::pair<int32_t, int32_t>>& neighbours, std::vector<char>* marked) {
-  FoldCount count;
-  if (marked) marked->assign(triangles.size(), 0);
-  for (size_t t = 0; t < triangles.size(); ++t)
-    if (!faces_out(positions, side, triangles[t])) {
-      ++count.folded_by_nearest_input;
-      if (marked) (*marked)[t] = 1;
-    }
-  for (const auto& [t, u] : neighbours)
-    if (pleat(triangle_normal(positions, triangles[t]), triangle_normal(positions, triangles[u]))) {
-      ++count.pleats;
-      if (marked) (*marked)[t] = (*marked)[u] = 1;
-    }
-  return count;
-}
 
 FitReport fit_to_surface(const TriangleMesh& input, const TriangleMesh& sides,
                          const std::vector<std::vector<std::array<int32_t, 3>>>& levels, const std::vector<char>& fixed,
@@ -143,16 +157,9 @@ FitReport fit_to_surface(const TriangleMesh& input, const TriangleMesh& sides,
   // nearest it (as the fold recount judges corners off the input).
   const FoldCounter::Sides side_at(sides);
   std::vector<Eigen::Vector3d> side = side_at.of(x);
-  // Neighbouring triangles of the finest level, and whether they meet at
-  // more than 150 degrees (a pleat, as RefineLevelReport::pleats).
+  // Neighbouring triangles of the finest level, for the pleats.
   const std::vector<std::pair<int32_t, int32_t>> neighbours = neighbour_pairs(fine);
-  auto pleated = [&](const std::vector<Eigen::Vector3d>& p, int32_t t, int32_t u) {
-    return pleat(triangle_normal(p, fine[t]), triangle_normal(p, fine[u]));
-  };
   const std::vector<uint32_t> search_order = spatial_order(samples);
-  std::vector<int32_t> owner(samples.size());
-  std::vector<Eigen::Vector3d> weight(samples.size());
-  std::vector<double> offset_of(samples.size());
   // The other way: four points of each triangle of the remesh (its centroid
   // and the points halfway between it and each corner), each measured to the
   // nearest point of the input exactly (the input's slivers can lie nearer
@@ -179,38 +186,8 @@ FitReport fit_to_surface(const TriangleMesh& input, const TriangleMesh& sides,
   // Each point's nearest input triangle, where the next search starts.
   std::vector<std::array<int32_t, 4>> input_triangle(both_ways ? fine.size() : 0, {-1, -1, -1, -1});
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
-    const NearestTriangle nearest(x, fine);
-    // Each sample's nearest triangle, where on it, and its signed distance
-    // from it.
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, samples.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
-      for (size_t o = r.begin(); o != r.end(); ++o) {
-        const size_t i = search_order[o];
-        const Eigen::Vector3d& q = samples[i];
-        const NearestTriangle::Hit hit = nearest(q);
-        const int32_t best_t = hit.triangle;
-        const Eigen::Vector3d& best_c = hit.point;
-        owner[i] = best_t;
-        if (best_t < 0) continue;
-        const auto& tri = fine[best_t];
-        const Eigen::Vector3d normal = triangle_normal(x, tri);
-        const double len = normal.norm();
-        if (!(len > 0.0)) {
-          owner[i] = -1;
-          continue;
-        }
-        weight[i] = barycentric(best_c, x[tri[0]], x[tri[1]], x[tri[2]]).cwiseMax(0.0);
-        offset_of[i] = (q - best_c).dot(normal) / len;
-      }
-    });
     std::vector<double> sum(n, 0.0), mass(n, 0.0);
-    for (size_t i = 0; i < samples.size(); ++i) {
-      if (owner[i] < 0) continue;
-      for (int c = 0; c < 3; ++c) {
-        const int32_t v = fine[owner[i]][c];
-        sum[v] += weight[i][c] * offset_of[i];
-        mass[v] += weight[i][c];
-      }
-    }
+    add_sample_offsets(x, fine, samples, search_order, &sum, &mass);
     if (both_ways) {
       tbb::parallel_for(tbb::blocked_range<size_t>(0, fine.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t t = r.begin(); t != r.end(); ++t) {
@@ -259,38 +236,7 @@ FitReport fit_to_surface(const TriangleMesh& input, const TriangleMesh& sides,
       side[v] = side_at(x[v]);
       moved[v] = 1;
     }
-    // Undo the moves around any triangle (of any level) that would turn by
-    // 60 degrees or more, or come to face against the input, and around
-    // two neighbours that would pleat, until none does.
-    auto undo = [&](const std::array<int32_t, 3>& tri) {
-      bool any = false;
-      for (int32_t v : tri)
-        if (moved[v]) {
-          x[v] = before[v];
-          side[v] = side_before[v];
-          moved[v] = 0;
-          ++report.refused;
-          any = true;
-        }
-      return any;
-    };
-    for (bool changed = true; changed;) {
-      changed = false;
-      for (const auto& [t, u] : neighbours) {
-        const auto &a = fine[t], &b = fine[u];
-        if (!moved[a[0]] && !moved[a[1]] && !moved[a[2]] && !moved[b[0]] && !moved[b[1]] && !moved[b[2]]) continue;
-        if (pleated(x, t, u) && !pleated(before, t, u)) changed |= undo(a) | undo(b);
-      }
-      for (size_t k = 0; k < levels.size(); ++k)
-        for (const auto& tri : levels[k]) {
-          if (!moved[tri[0]] && !moved[tri[1]] && !moved[tri[2]]) continue;
-          const Eigen::Vector3d was = triangle_normal(before, tri), now = triangle_normal(x, tri);
-          if (now.dot(was) > 0.5 * now.norm() * was.norm() &&
-              (faces_out(x, side, tri) || !faces_out(before, side_before, tri)))
-            continue;
-          changed |= undo(tri);
-        }
-    }
+    report.refused += undo_tangling_moves(levels, fine, neighbours, before, side_before, &x, &side, &moved);
     report.moved = 0;
     double total = 0.0;
     for (size_t v = 0; v < n; ++v)
@@ -305,19 +251,6 @@ FitReport fit_to_surface(const TriangleMesh& input, const TriangleMesh& sides,
   report.pleats = left.pleats;
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;
-}
-
-FoldCounter::FoldCounter(const TriangleMesh& sides)
-    : sides_(sides.positions.empty() ? nullptr : std::make_unique<Sides>(sides)) {}
-FoldCounter::~FoldCounter() = default;
-
-FoldCount FoldCounter::operator()(const std::vector<Eigen::Vector3d>& positions,
-                                  const std::vector<std::array<int32_t, 3>>& triangles, std::vector<char>* marked) const {
-  if (!sides_) {
-    if (marked) marked->assign(triangles.size(), 0);
-    return FoldCount{};
-  }
-  return count_by_sides(positions, sides_->of(positions), triangles, marked);
 }
 
 }  // namespace srcodec

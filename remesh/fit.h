@@ -12,10 +12,7 @@
 // measures it: from samples of the input to the remesh, and from points of
 // the remesh's triangles to the input. The metric's PSNR is the worse of the
 // two ways; the input's samples alone leave out the parts of the remesh that
-// no sample is nearest to. With the remesh's points weighted twice, the fit
-// gained 0.3 to 0.8 dB more at 4 levels than with the input's samples alone
-// on every corpus mesh but beast_tri, which lost 0.13 dB (twentieth session,
-// docs/remesh_quality.md).
+// no sample is nearest to, and the fit would not pull them in.
 #pragma once
 
 #include <Eigen/Core>
@@ -27,6 +24,7 @@
 #include <vector>
 
 #include "format/mesh.h"
+#include "remesh/folds.h"
 #include "remesh/nearest_triangle.h"
 #include "remesh/point_cloud.h"
 
@@ -38,7 +36,7 @@ struct FitOptions {
   size_t samples_per_vertex = 4;  // input surface samples, spread by area
   // The weight of the remesh's points measured to the input against the
   // input's samples measured to the remesh, per unit of area (0: the input's
-  // samples alone, the fit before the twentieth session).
+  // samples alone).
   double remesh_weight = 2.0;
   uint64_t seed = 1;
 };
@@ -74,52 +72,5 @@ FitReport fit_to_surface(const TriangleMesh& input, const TriangleMesh& sides,
                          const std::vector<std::vector<std::array<int32_t, 3>>>& levels, const std::vector<char>& fixed,
                          std::vector<Eigen::Vector3d>* positions, const FitOptions& options = {},
                          const NearestTriangle* input_search = nullptr);
-
-// The finest level's triangles facing against the input and its pleats,
-// counted as fit_to_surface counts them (FitReport::folded_by_nearest_input
-// and FitReport::pleats): corners judged by the normals of the vertices of
-// `sides` nearest them. With `marked`, also per triangle: 1 when it is
-// folded or in a pleat.
-struct FoldCount {
-  size_t folded_by_nearest_input = 0;
-  size_t pleats = 0;
-};
-// FoldCounter's count, with each vertex's side (the normal judging it) given.
-FoldCount count_by_sides(const std::vector<Eigen::Vector3d>& positions, const std::vector<Eigen::Vector3d>& side,
-                         const std::vector<std::array<int32_t, 3>>& triangles, std::vector<char>* marked = nullptr);
-// The same with the pairs of neighbouring triangles given (each pair once),
-// for a caller that counts one set of triangles many times.
-FoldCount count_by_sides(const std::vector<Eigen::Vector3d>& positions, const std::vector<Eigen::Vector3d>& side,
-                         const std::vector<std::array<int32_t, 3>>& triangles,
-                         const std::vector<std::pair<int32_t, int32_t>>& neighbours, std::vector<char>* marked);
-
-class FoldCounter {
- public:
-  explicit FoldCounter(const TriangleMesh& sides);  // keeps a reference to it
-  ~FoldCounter();
-  FoldCount operator()(const std::vector<Eigen::Vector3d>& positions,
-                       const std::vector<std::array<int32_t, 3>>& triangles, std::vector<char>* marked = nullptr) const;
-
-  // Per point, the unit normal of the nearest vertex of a mesh: the side of
-  // the input surface a corner off it is on.
-  class Sides {
-   public:
-    explicit Sides(const TriangleMesh& mesh);  // keeps a reference to mesh.positions
-    Eigen::Vector3d operator()(const Eigen::Vector3d& p) const;
-    // operator() of each point (in parallel).
-    std::vector<Eigen::Vector3d> of(const std::vector<Eigen::Vector3d>& points) const;
-    // The (up to) k vertices of the mesh nearest p, nearest first.
-    std::vector<uint32_t> nearest(const Eigen::Vector3d& p, size_t k) const;
-    const Eigen::Vector3d& normal(uint32_t vertex) const { return normals_[vertex]; }
-
-   private:
-    std::vector<Eigen::Vector3d> normals_;
-    PointCloud cloud_;
-    PointTree tree_;
-  };
-
- private:
-  std::unique_ptr<Sides> sides_;
-};
 
 }  // namespace srcodec

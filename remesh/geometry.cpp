@@ -97,31 +97,12 @@ Eigen::Vector3d barycentric(const Eigen::Vector3d& q, const Eigen::Vector3d& a, 
   return Eigen::Vector3d(u, v, 1.0 - u - v);
 }
 
-double facing(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2,
-              const Eigen::Vector3d& reference) {
-  const Eigen::Vector3d n = (p1 - p0).cross(p2 - p0);
-  const double r = reference.norm();
-  const double scale = (p1 - p0).squaredNorm() + (p2 - p1).squaredNorm() + (p0 - p2).squaredNorm();
-  if (!(r > 0.0) || !(scale > 0.0)) return 0.0;
-  return n.dot(reference) / (r * scale);
-}
-
-double facing(const std::vector<Eigen::Vector3d>& p, const std::vector<Eigen::Vector3d>& side,
-              const std::array<int32_t, 3>& t) {
-  return facing(p[t[0]], p[t[1]], p[t[2]], side[t[0]] + side[t[1]] + side[t[2]]);
-}
-
 Eigen::Vector3d triangle_normal(const std::vector<Eigen::Vector3d>& p, const std::array<int32_t, 3>& t) {
   return (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]);
 }
 
 double triangle_area(const std::vector<Eigen::Vector3d>& p, const std::array<int32_t, 3>& t) {
   return 0.5 * triangle_normal(p, t).norm();
-}
-
-bool pleat(const Eigen::Vector3d& normal_t, const Eigen::Vector3d& normal_u) {
-  constexpr double kCos150 = -0.86602540378443865;
-  return normal_t.dot(normal_u) < kCos150 * normal_t.norm() * normal_u.norm();
 }
 
 std::vector<Eigen::Vector3d> surface_samples(const TriangleMesh& mesh, size_t count, uint64_t seed) {

@@ -36,25 +36,9 @@ double squared_distance_to_triangle(const Eigen::Vector3d& p, const Eigen::Vecto
 Eigen::Vector3d barycentric(const Eigen::Vector3d& q, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                             const Eigen::Vector3d& c);
 
-// How triangle p0 p1 p2 faces along `reference` (a sum of unit normals at
-// its corners): its normal's dot product with it, over |reference| and the
-// triangle's squared edge lengths; 0 with no reference or no edges. A
-// triangle is folded when this is not above kFoldedFacing.
-double facing(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2,
-              const Eigen::Vector3d& reference);
-constexpr double kFoldedFacing = 1e-9;
-// facing() of triangle t of `p` along the sum of `side` (a unit normal per
-// vertex) at its corners.
-double facing(const std::vector<Eigen::Vector3d>& p, const std::vector<Eigen::Vector3d>& side,
-              const std::array<int32_t, 3>& t);
-
 // The normal of triangle t of `p`, twice its area long; its area.
 Eigen::Vector3d triangle_normal(const std::vector<Eigen::Vector3d>& p, const std::array<int32_t, 3>& t);
 double triangle_area(const std::vector<Eigen::Vector3d>& p, const std::array<int32_t, 3>& t);
-
-// Two neighbouring triangles, of these normals (any length), meet at more
-// than 150 degrees: a pleat.
-bool pleat(const Eigen::Vector3d& normal_t, const Eigen::Vector3d& normal_u);
 
 // Calls f with the centroid of each of the n x n sub-triangles of triangle
 // abc (those of a regular split of each edge into n), row by row.

@@ -6,9 +6,8 @@
 //
 // Why the centroids and not the sites drive the Lloyd steps: a site snapped to
 // a vertex every step stalls as soon as its centroid moves less than half a
-// vertex spacing, long before the tessellation is centroidal (measured on
-// igea, 2000 sites: 5% higher final energy; on a uniform icosphere, cell areas
-// up to 2.1x apart instead of 1.6x).
+// vertex spacing, long before the tessellation is centroidal (higher final
+// energy, cells of more uneven areas).
 #include "remesh/lbg_sites.h"
 
 #include <tbb/blocked_range.h>

@@ -6,11 +6,9 @@
 //
 // Why: the paper's Eq. 5 counts input vertices, and our earlier geometric
 // tolerance judged each triangle by the input's distance to its plane before
-// the fit. On a fitted remesh that follows a scan vertex to vertex (the
-// bunny's 5 levels have 8 triangles per input vertex), neither predicts what
-// a split gains: at 70% of the triangles the tolerance lost 0.79 dB on the
-// bunny. Measured on the fitted positions themselves, half the splits go
-// for 0.35 dB (a numpy prototype on the bunny, 2026-11-29).
+// the fit. On a fitted remesh that follows a scan vertex to vertex (several
+// triangles per input vertex), neither predicts what a split gains;
+// measured on the fitted positions themselves, many splits go for little.
 #pragma once
 
 #include <cstddef>
@@ -19,6 +17,7 @@
 #include "format/mesh.h"
 #include "format/status.h"
 #include "remesh/fit.h"
+#include "remesh/folds.h"
 #include "format/semi_regular/semi_regular_mesh.h"
 
 namespace srcodec {
@@ -28,7 +27,7 @@ struct CoarseningOptions {
   double max_loss_db = 0.5;
   size_t input_samples_per_vertex = 2;  // samples of the input's surface, per vertex of the finest level
   // Not the fit's (FitOptions::seed): the fit brings the remesh closest to
-  // its own samples, and measured on them the bunny's error was 17% low.
+  // its own samples, so the error measured on them is too low.
   uint64_t seed = 7;
   // Then the vertices at the corners of the finest level's unsplit
   // triangles are fitted again (remesh/fit.h, with `fit`; they were fitted
@@ -39,9 +38,8 @@ struct CoarseningOptions {
   FitOptions fit;
   int refit_passes = 3;
   // The passes after the first keep the whole measure within this part of
-  // max_loss_db: the metric (1M samples, mean of 3 seeds) found up to 1.38
-  // times the whole measure's loss (the bunny; 0.99 to 1.15 on armadillo,
-  // nefertiti and igea), so that 0.5 dB asked came out as 0.58.
+  // max_loss_db: the metric finds a larger loss than the whole measure does,
+  // and the margin keeps the loss the metric sees within the one asked.
   double whole_margin = 0.7;
   // Deeper where it pays (ours): first, the finest level's triangles that
   // hold the most error (this fraction of them, by their share of the

@@ -35,9 +35,8 @@ class NearestTriangle {
   Hit operator()(const Eigen::Vector3d& q) const;
   // The nearest of all (needs exact_search; else as operator()). The
   // slivers of an irregular input can lie nearer than the 10 nearest
-  // centroids' triangles, and to points far from the surface they often do:
-  // on nefertiti the remesh's error toward the input came out 15% high with
-  // operator(). Each triangle is covered by points (the centroids of a
+  // centroids' triangles, and to points far from the surface they often do,
+  // which puts the remesh's error toward the input too high. Each triangle is covered by points (the centroids of a
   // regular split of it) within `reach_` of all of it, so that every
   // triangle holding a point nearer than d has one of them within d + reach_.
   // `near_triangle`, when not -1, is a triangle likely to be the nearest (a

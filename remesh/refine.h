@@ -2,7 +2,11 @@
 // Payan, Antonini §III-B, Fig. 4 and 5, Eqs. 4-5; DESIGN.md remesh/ steps 6
 // and 7): per level, split the selected triangles 1-to-4, start every new
 // vertex at the input vertex nearest its edge's midpoint on the base domain,
-// then run Lloyd relaxation over the sites of all levels so far.
+// then run Lloyd relaxation over the sites of all levels so far. The
+// paper's steps are refine.cpp, new_vertices.cpp and lloyd_relaxation.cpp;
+// our repairs of the folds they leave are fold_repairs.cpp,
+// patch_reparam.cpp and spike_mending.cpp (remesh/refiner.h holds the
+// state they share).
 #pragma once
 
 #include <cstddef>
@@ -14,6 +18,7 @@
 #include "format/mesh.h"
 #include "format/status.h"
 #include "remesh/base_mesh.h"
+#include "remesh/progress.h"
 #include "format/semi_regular/hierarchy.h"
 
 namespace srcodec {
@@ -41,12 +46,7 @@ struct RefineOptions {
   // min_moved_fraction of its sites moved in a step.
   int max_lloyd_iterations = 10;
   double min_moved_fraction = 0.002;
-  // Where the input between a parent edge's ends is a detour (its path along
-  // the input's edges more than 1.6 times the chord), put the new vertex in
-  // the middle of that path, and refuse Lloyd moves that make an edge span
-  // a new detour (ours; RemeshOptions::follow_detours).
-  bool follow_detours = false;
-  std::function<void(const std::string&)> progress;  // one line per stage, may be empty
+  RemeshProgressCallback progress;  // kLevel, kThresholdStops, kSplitsUndone
 };
 
 struct RefineLevelReport {
@@ -61,8 +61,6 @@ struct RefineLevelReport {
   int lloyd_iterations = 0;
   size_t moves = 0;            // site moves accepted, summed over the steps
   size_t refused_folds = 0;    // site moves refused because a triangle would flip
-  size_t refused_detours = 0;  // site moves refused because an edge would span a detour of the input
-  size_t detour_vertices = 0;  // new vertices put in the middle of the input's detour under their edge
   size_t empty_cells = 0;       // sites whose cell holds only their own vertex after the last step
   // Triangles facing against the input surface at the end (normal against
   // the summed input normals at their corners, or no area); 0 in a clean

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "remesh/adjacency.h"
+#include "remesh/folds.h"
 #include "remesh/geometry.h"
 
 namespace srcodec {
@@ -35,7 +36,7 @@ SliverRelaxReport relax_slivers(const FoldCounter::Sides& sides, const std::vect
   const std::vector<std::array<int32_t, 3>> across = triangles_across(finest);
   std::vector<Eigen::Vector3d> side = sides.of(p);  // each vertex's side of the input, as the fold count judges
   auto sound = [&](int32_t t) {  // faces out, and no pleat with a neighbour
-    if (!(facing(p, side, finest[t]) > kFoldedFacing)) return false;
+    if (folded(p, side, finest[t])) return false;
     const Eigen::Vector3d normal = triangle_normal(p, finest[t]);
     for (int e = 0; e < 3; ++e)
       if (across[t][e] >= 0 && pleat(normal, triangle_normal(p, finest[across[t][e]]))) return false;

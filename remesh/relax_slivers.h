@@ -2,10 +2,9 @@
 // vertices that only the finest level uses move along their tangent plane
 // toward their neighbours' mean where a triangle at them is a sliver.
 //
-// Slivers are where coding error turns triangles over: in the bunny's file
-// at the default rate, 35% of the decoded triangles that face against the
-// input were remesh triangles of quality below 0.3, against 1.3% of all
-// (thirty-second session, docs/remesh_quality.md).
+// Slivers are where coding error turns triangles over: a decoded triangle
+// that faces against the input is far more often a sliver of the remesh
+// than the share of slivers would suggest (docs/remesh_design.md).
 #pragma once
 
 #include <Eigen/Core>
@@ -14,7 +13,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "remesh/fit.h"
+#include "remesh/folds.h"
 
 namespace srcodec {
 

@@ -22,8 +22,8 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 // Splits `total` base vertices over components in proportion to their
 // vertex counts, at least min(4, vertices) each. Not by area: what limits a
-// component is how many input vertices its Voronoi cells can hold (ogre's
-// coarse, large pieces ran out of vertices at level 2 when shared by area).
+// component is how many input vertices its Voronoi cells can hold (coarse,
+// large pieces run out of vertices when shared by area).
 std::vector<size_t> share_sites(const std::vector<ComponentMesh>& parts, size_t total) {
   size_t sum = 0;
   for (const ComponentMesh& part : parts) sum += part.mesh.positions.size();
@@ -39,32 +39,23 @@ std::vector<size_t> share_sites(const std::vector<ComponentMesh>& parts, size_t 
 // Voronoi cells flatter than this (their vector area over their area) are
 // split across their normals before the base mesh is built (LbgOptions::
 // min_flatness): a cell that wraps around a thin part makes base triangles
-// that cut through it, and no later level recovers. At 4 levels with the
-// default base size, against no splitting (2026-11-28): lionstatue's tail
-// 74.94 -> 81.76 dB and 18 + 5 folded triangles -> 0 (11 sites added; the
-// base mesh grows by 3, as the collapses keep fewer non-sites);
-// bunny_npm 58.81 -> 63.54 dB and 24 + 6 -> 0; beast 68.54 -> 74.28 dB (but
-// 159 -> 234 folded); ogre 69.38 -> 70.98 (511 -> 376 folded); armadillo
-// 75.02 -> 74.68 (13 more sites, 0 -> 1 folded), stanford-bunny 80.92 ->
-// 80.86 (6 -> 9); fandisk, rocker-arm, nefertiti and igea unchanged. 0.5
-// also changed fandisk (-0.55 dB) and nefertiti (+1.2); 0.25 missed the
-// lion's tail.
+// that cut through it, and no later level recovers. The value is the one
+// that catches thin tails without changing smooth meshes
+// (docs/remesh_design.md, "Constants of remesh/ and what they measure").
 constexpr double kMinCellFlatness = 0.4;
 
 // --oversample auto: enough input vertices that the finest uniform level's
 // Voronoi cells hold about 8 each. Lloyd needs several vertices per cell to
-// move a site anywhere; on stanford-bunny, 3 levels over 1141 base vertices
-// reach 62.7 dB with 1.9 vertices per finest cell and 80.3 dB with 7.7.
+// move a site anywhere.
 constexpr double kAutoOversampleRatio = 4.0;
 // ... and that almost everywhere, not on average: the fraction of the area
-// allowed to stay coarser. ogre's low-poly pieces had 14% empty cells and
-// hundreds of folds at level 2 when only the average was checked.
+// allowed to stay coarser: low-poly pieces of a mesh leave empty cells and
+// folds when only the average is checked.
 constexpr double kCoarseAreaAllowed = 0.05;
 
 // ... but no more than 4 times the input's vertices or 1M, whichever is
 // more: the site selection and the collapses grow with the oversampled count
-// (igea at 5 levels: 2.1M vertices, 97 s and 79.5 dB; 537k vertices, 20 s and
-// 76.7 dB).
+// faster than the quality does.
 constexpr double kAutoBudgetFactor = 4.0;
 constexpr double kAutoBudgetFloor = 1e6;
 
@@ -103,8 +94,7 @@ int auto_steps(const TriangleMesh& part, size_t sites, int levels) {
   return steps;
 }
 // Below 2 input vertices per output vertex, most cells hold their site only:
-// Lloyd cannot move them and new vertices fold the mesh (beast, 2 levels
-// without oversampling: 13114 empty cells, 8041 folded triangles, 38.7 dB).
+// Lloyd cannot move them and new vertices fold the mesh.
 constexpr double kMinUniformRatio = 2.0;
 // The smallest default base mesh; a mesh with fewer vertices is its own base
 // mesh when the levels are fitted to it.
@@ -120,13 +110,8 @@ size_t default_base_vertices(size_t input_vertices, size_t components, int level
   const double v = static_cast<double>(input_vertices);
   // As many base vertices as the oversampling budget allows with about 8
   // input vertices per finest-level vertex, and no more than 1 per 24 input
-  // vertices. Measured on stanford-bunny: 124 base vertices and 4 levels give
-  // 58.8 dB, 537 give 74.2 dB (3 levels over 1559: 80.6 dB); on armadillo
-  // (14587 vertices), 228 base vertices (the old 1 per 64) give 65.5 dB at 4
-  // levels, 488 (this rule) 69.0 dB, 600 72.8 dB. Fewer input vertices per
-  // finest vertex hurt: 6 instead of 8 took the bunny from 79.3 to 71.8 dB and
-  // nefertiti from 75.5 to 71.5 dB (3.2 and 4.8 oversampled input vertices
-  // per finest vertex), though armadillo gained (72.0 dB).
+  // vertices: a larger base mesh stretches the parameterization less, and
+  // fewer input vertices per finest vertex leave Lloyd too little to move.
   const double budget = std::max(kAutoBudgetFactor * v, kAutoBudgetFloor);
   const double by_budget = budget / (8.0 * std::pow(4.0, std::max(levels, 0)));
   const double base = std::min(v / 24.0, by_budget);
@@ -134,13 +119,10 @@ size_t default_base_vertices(size_t input_vertices, size_t components, int level
                             kMaxDefaultBase);
 }
 
-StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& options, RemeshReport* report) {
-  RemeshReport local;
-  RemeshReport& rep = report ? *report : local;
-  rep = RemeshReport{};
-  auto progress = [&](const std::string& line) {
-    if (options.progress) options.progress(line);
-  };
+namespace {
+
+// Checks what remesh() is asked before any work.
+Status check_options(const RemeshOptions& options) {
   if (options.levels < 0 || options.levels > 12)
     return invalid_argument("remesh: " + std::to_string(options.levels) + " levels asked; use 0 to 12");
   if (!(options.tolerance_db >= 0.0 && options.tolerance_db < 400.0))
@@ -163,126 +145,200 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
                             "coarsening; ask for a max loss too");
   if (options.oversample < -1 || options.oversample > 3)
     return invalid_argument("remesh: oversample " + std::to_string(options.oversample) + "; use auto or 0 to 3");
-  if (mesh.triangles.empty()) return invalid_mesh("remesh: the mesh has no triangles");
-  const bool fit = options.fit_levels && options.base_vertices == 0;
-  if (fit && mesh.positions.size() < kMinDefaultBase) {
-    RemeshOptions whole = options;
-    whole.fit_levels = false;
-    whole.levels = 0;
-    whole.oversample = 0;
-    whole.base_vertices = 0;
-    // Cutting non-manifold spots may have duplicated some vertices.
-    SRCODEC_ASSIGN_OR_RETURN(std::vector<ComponentMesh> pieces, split_into_manifold_components(mesh));
-    for (const ComponentMesh& piece : pieces) whole.base_vertices += piece.mesh.positions.size();
-    progress("the input has " + std::to_string(mesh.positions.size()) + " vertices, fewer than the smallest default " +
-             "base mesh (" + std::to_string(kMinDefaultBase) + "): it is the base mesh, with no levels");
-    return remesh(mesh, whole, report);
+  return ok_status();
+}
+
+// The steps of remesh(), in order, over one input; each step a member.
+class Remesher {
+ public:
+  Remesher(const TriangleMesh& mesh, const RemeshOptions& options, RemeshReport& rep)
+      : mesh_(mesh), options_(options), rep_(rep) {}
+
+  // An input with fewer vertices than the smallest default base mesh is its
+  // own base mesh, with no levels (RemeshOptions::fit_levels).
+  StatusOr<SemiRegularMesh> whole_input_as_base(RemeshReport* report) const;
+  // Components, their share of the base vertices and their oversampling.
+  Status split_and_oversample();
+  // The default base size, raised where the oversampled input holds more
+  // vertices than planned.
+  void raise_default_base();
+  // Too few input vertices for the levels asked: fewer levels (when they
+  // were not asked for), or an error that says what would work.
+  StatusOr<bool> enough_for_levels(bool fit);
+  StatusOr<SemiRegularMesh> with_fewer_levels(RemeshReport* report) const;
+  // Per component: sites, then base mesh; both joined into one domain.
+  Status build_base();
+  // The paper's refinement (remesh/refine.h), then the fit.
+  Status refine_levels();
+  void fit();
+  // Our repairs and adaptivity after the refinement, on `out`.
+  void untangle_out(SemiRegularMesh* m, const UntangleOptions& untangle_options);
+  Status coarsen(SemiRegularMesh* out, int32_t levels);
+  Status unsplit(SemiRegularMesh* out);
+  void relax_and_place(SemiRegularMesh* out);
+
+  StatusOr<SemiRegularMesh> run(RemeshReport* report, bool fit_levels);
+
+ private:
+  void progress(RemeshProgress p) const {
+    if (!options_.progress) return;
+    if (!p.report) p.report = &rep_;
+    options_.progress(p);
+  }
+  const UntangleInput& untangle_data() {
+    if (!untangle_input_) untangle_input_ = std::make_unique<UntangleInput>(input_);
+    return *untangle_input_;
   }
 
-  SRCODEC_ASSIGN_OR_RETURN(std::vector<ComponentMesh> parts, split_into_manifold_components(mesh));
-  rep.components = parts.size();
+  const TriangleMesh& mesh_;
+  const RemeshOptions& options_;
+  RemeshReport& rep_;
+  std::vector<ComponentMesh> parts_;
+  std::vector<size_t> share_;
+  size_t base_total_ = 0;
+  double finest_ = 0.0;
+  bool too_few_for_uniform_ = false;
+  TriangleMesh input_;  // the oversampled components, joined
+  BaseMesh base_;
+  RefineResult refined_;
+  std::vector<Eigen::Vector3d> positions_;
+  // The input's sides, search and components, built once for every
+  // untangling and unsplitting pass.
+  std::unique_ptr<UntangleInput> untangle_input_;
+};
+
+StatusOr<SemiRegularMesh> Remesher::whole_input_as_base(RemeshReport* report) const {
+  RemeshOptions whole = options_;
+  whole.fit_levels = false;
+  whole.levels = 0;
+  whole.oversample = 0;
+  whole.base_vertices = 0;
+  // Cutting non-manifold spots may have duplicated some vertices.
+  SRCODEC_ASSIGN_OR_RETURN(std::vector<ComponentMesh> pieces, split_into_manifold_components(mesh_));
+  for (const ComponentMesh& piece : pieces) whole.base_vertices += piece.mesh.positions.size();
+  RemeshProgress p;
+  p.step = RemeshStep::kWholeInputIsBase;
+  p.vertices = mesh_.positions.size();
+  p.min_base_vertices = kMinDefaultBase;
+  progress(p);
+  return remesh(mesh_, whole, report);
+}
+
+Status Remesher::split_and_oversample() {
+  SRCODEC_ASSIGN_OR_RETURN(parts_, split_into_manifold_components(mesh_));
+  rep_.components = parts_.size();
   // Each component's share of the base is capped at its own vertex count
   // (share_sites), whatever the oversampling: a larger request would get
   // fewer base vertices than asked, with no word.
   size_t input_vertices = 0;
-  for (const ComponentMesh& part : parts) input_vertices += part.mesh.positions.size();
-  if (options.base_vertices > input_vertices)
-    return invalid_argument("remesh: " + std::to_string(options.base_vertices) +
+  for (const ComponentMesh& part : parts_) input_vertices += part.mesh.positions.size();
+  if (options_.base_vertices > input_vertices)
+    return invalid_argument("remesh: " + std::to_string(options_.base_vertices) +
                             " base vertices asked but the mesh has only " + std::to_string(input_vertices) +
                             " vertices, and base vertices are taken among its own: ask for at most " +
                             std::to_string(input_vertices) + " (--base-vertices)");
-  size_t base_total = options.base_vertices > 0
-                          ? options.base_vertices
-                          : default_base_vertices(mesh.positions.size(), parts.size(), options.levels);
-  std::vector<size_t> share = share_sites(parts, base_total);
+  base_total_ = options_.base_vertices > 0
+                    ? options_.base_vertices
+                    : default_base_vertices(mesh_.positions.size(), parts_.size(), options_.levels);
+  share_ = share_sites(parts_, base_total_);
 
   // Oversampling per component: each gets the steps its own share needs, so
   // a small piece with few vertices is not starved by a large one.
-  auto start = std::chrono::steady_clock::now();
-  for (size_t c = 0; c < parts.size(); ++c) {
-    const int steps = options.oversample >= 0 ? options.oversample
-                                              : auto_steps(parts[c].mesh, share[c], options.levels);
-    SRCODEC_ASSIGN_OR_RETURN(parts[c].mesh, oversample(parts[c].mesh, options.scheme, steps));
-    rep.component_oversample_steps.push_back(steps);
-    rep.oversample_steps = std::max(rep.oversample_steps, steps);
-    rep.oversampled_vertices += parts[c].mesh.positions.size();
+  const auto start = std::chrono::steady_clock::now();
+  for (size_t c = 0; c < parts_.size(); ++c) {
+    const int steps = options_.oversample >= 0 ? options_.oversample
+                                               : auto_steps(parts_[c].mesh, share_[c], options_.levels);
+    SRCODEC_ASSIGN_OR_RETURN(parts_[c].mesh, oversample(parts_[c].mesh, options_.scheme, steps));
+    rep_.component_oversample_steps.push_back(steps);
+    rep_.oversample_steps = std::max(rep_.oversample_steps, steps);
+    rep_.oversampled_vertices += parts_[c].mesh.positions.size();
   }
-  rep.seconds_oversample = seconds_since(start);
-  if (rep.oversample_steps > 0)
-    progress("oversampled (up to " + std::to_string(rep.oversample_steps) + " steps per component): " +
-             std::to_string(rep.oversampled_vertices) + " vertices, " + std::to_string(rep.seconds_oversample) + " s");
-  if (options.base_vertices == 0) {
-    // The default base size was planned on the oversampling budget; a small
-    // input that got all three steps may hold more than planned: as many base
-    // vertices as kSupportedRatio oversampled vertices per finest vertex
-    // allow, still at most one per 24 input vertices. On armadillo (14587
-    // vertices, 933442 oversampled) this takes the base from 488 to 561
-    // vertices at 4 levels (488 gave 69.0 dB, 560 74.5 dB, 608 71.5 dB).
-    // 6 instead of 6.5 also raised nefertiti's base, from 488 to 521, and
-    // took it from 75.5 to 71.8 dB (520 gave 76.4 dB: the quality swings by
-    // a few dB with the base size; measured 2026-11-28).
-    const double supported = std::min(static_cast<double>(mesh.positions.size()) / 24.0,
-                                       static_cast<double>(rep.oversampled_vertices) /
-                                           (kSupportedRatio * std::pow(4.0, options.levels)));
-    const size_t raised = std::min<size_t>(static_cast<size_t>(std::llround(supported)), kMaxDefaultBase);
-    if (raised > base_total) {
-      for (size_t c = 0; c < parts.size(); ++c)
-        share[c] = std::min(parts[c].mesh.positions.size(),
-                            static_cast<size_t>(std::llround(static_cast<double>(share[c]) * raised / base_total)));
-      base_total = raised;
-      progress("default base size raised to " + std::to_string(base_total) +
-               " vertices: the oversampled input holds more vertices than planned");
-    }
+  rep_.seconds_oversample = seconds_since(start);
+  if (rep_.oversample_steps > 0) {
+    RemeshProgress p;
+    p.step = RemeshStep::kOversampled;
+    p.seconds = rep_.seconds_oversample;
+    progress(p);
   }
-  const double finest = static_cast<double>(base_total) * std::pow(4.0, options.levels);
-  const bool too_few_for_uniform = static_cast<double>(rep.oversampled_vertices) < kMinUniformRatio * finest;
-  const bool too_few_for_levels = options.uniform && options.levels > 0 && too_few_for_uniform;
-  if (too_few_for_levels && fit) {
-    RemeshOptions fewer = options;
-    fewer.levels = options.levels - 1;
-    progress(std::to_string(options.levels) + " levels need about " +
-             std::to_string(static_cast<size_t>(kMinUniformRatio * finest)) + " input vertices, the input has " +
-             std::to_string(rep.oversampled_vertices) + (rep.oversample_steps > 0 ? " after oversampling" : "") +
-             ": trying " + std::to_string(fewer.levels));
-    return remesh(mesh, fewer, report);
-  }
+  return ok_status();
+}
+
+void Remesher::raise_default_base() {
+  if (options_.base_vertices != 0) return;
+  // The default base size was planned on the oversampling budget; a small
+  // input that got all three steps may hold more than planned: as many base
+  // vertices as kSupportedRatio oversampled vertices per finest vertex
+  // allow, still at most one per 24 input vertices. The quality swings by a
+  // few dB with the base size; 6.5 is where the raise helps without starving
+  // the cells.
+  const double supported = std::min(static_cast<double>(mesh_.positions.size()) / 24.0,
+                                    static_cast<double>(rep_.oversampled_vertices) /
+                                        (kSupportedRatio * std::pow(4.0, options_.levels)));
+  const size_t raised = std::min<size_t>(static_cast<size_t>(std::llround(supported)), kMaxDefaultBase);
+  if (raised <= base_total_) return;
+  for (size_t c = 0; c < parts_.size(); ++c)
+    share_[c] = std::min(parts_[c].mesh.positions.size(),
+                         static_cast<size_t>(std::llround(static_cast<double>(share_[c]) * raised / base_total_)));
+  base_total_ = raised;
+  RemeshProgress p;
+  p.step = RemeshStep::kBaseSizeRaised;
+  p.vertices = base_total_;
+  progress(p);
+}
+
+StatusOr<bool> Remesher::enough_for_levels(bool fit) {
+  finest_ = static_cast<double>(base_total_) * std::pow(4.0, options_.levels);
+  too_few_for_uniform_ = static_cast<double>(rep_.oversampled_vertices) < kMinUniformRatio * finest_;
+  const bool too_few_for_levels = options_.uniform && options_.levels > 0 && too_few_for_uniform_;
+  if (too_few_for_levels && fit) return false;
   if (too_few_for_levels)
     return invalid_argument(
-        "remesh: " + std::to_string(options.levels) + " uniform levels over " + std::to_string(base_total) +
-        " base vertices make about " + std::to_string(static_cast<size_t>(finest)) + " vertices, but the input has " +
-        std::to_string(rep.oversampled_vertices) + (rep.oversample_steps > 0 ? " after oversampling" : "") +
+        "remesh: " + std::to_string(options_.levels) + " uniform levels over " + std::to_string(base_total_) +
+        " base vertices make about " + std::to_string(static_cast<size_t>(finest_)) + " vertices, but the input has " +
+        std::to_string(rep_.oversampled_vertices) + (rep_.oversample_steps > 0 ? " after oversampling" : "") +
         "; the Voronoi cells need at least " + std::to_string(static_cast<int>(kMinUniformRatio)) +
         " input vertices per output vertex: oversample more (--oversample, up to 3), or ask for fewer levels or fewer "
         "base vertices (--base-vertices)");
-  if (base_total > rep.oversampled_vertices)
-    return invalid_argument("remesh: " + std::to_string(base_total) + " base vertices asked but the mesh has only " +
-                            std::to_string(rep.oversampled_vertices) + " vertices" +
-                            (rep.oversample_steps > 0 ? " after oversampling" : "") + "; ask for at most " +
-                            std::to_string(rep.oversampled_vertices / 4) + " (--base-vertices) or oversample more");
+  if (base_total_ > rep_.oversampled_vertices)
+    return invalid_argument("remesh: " + std::to_string(base_total_) + " base vertices asked but the mesh has only " +
+                            std::to_string(rep_.oversampled_vertices) + " vertices" +
+                            (rep_.oversample_steps > 0 ? " after oversampling" : "") + "; ask for at most " +
+                            std::to_string(rep_.oversampled_vertices / 4) + " (--base-vertices) or oversample more");
+  return true;
+}
 
-  // Per component: sites, then base mesh; both joined into one domain.
-  TriangleMesh input;
-  BaseMesh base;
+StatusOr<SemiRegularMesh> Remesher::with_fewer_levels(RemeshReport* report) const {
+  RemeshOptions fewer = options_;
+  fewer.levels = options_.levels - 1;
+  RemeshProgress p;
+  p.step = RemeshStep::kFewerLevels;
+  p.levels = options_.levels;
+  p.vertices = static_cast<size_t>(kMinUniformRatio * finest_);
+  progress(p);
+  return remesh(mesh_, fewer, report);
+}
+
+Status Remesher::build_base() {
   double sites_s = 0.0, base_s = 0.0;
-  for (size_t c = 0; c < parts.size(); ++c) {
-    const TriangleMesh& part = parts[c].mesh;
+  for (size_t c = 0; c < parts_.size(); ++c) {
+    const TriangleMesh& part = parts_[c].mesh;
     auto t0 = std::chrono::steady_clock::now();
     VoronoiCells cells;
-    if (share[c] >= part.positions.size()) {
+    if (share_[c] >= part.positions.size()) {
       for (size_t v = 0; v < part.positions.size(); ++v) {
         cells.sites.push_back(static_cast<int32_t>(v));
         cells.cell_of.push_back(static_cast<int32_t>(v));
       }
     } else {
       LbgOptions lbg;
-      lbg.target_sites = share[c];
+      lbg.target_sites = share_[c];
       lbg.min_flatness = kMinCellFlatness;
       LbgReport lbg_report;
       SRCODEC_ASSIGN_OR_RETURN(cells, lbg_sites(part, lbg, &lbg_report));
-      for (const auto& round : lbg_report.rounds) rep.curled_sites += round.curled_splits;
+      for (const auto& round : lbg_report.rounds) rep_.curled_sites += round.curled_splits;
       BoundaryTipOptions tips;
-      tips.reach = boundary_tip_reach(part, share[c]);
-      rep.tip_sites += add_boundary_tip_sites(part, tips, &cells);
+      tips.reach = boundary_tip_reach(part, share_[c]);
+      rep_.tip_sites += add_boundary_tip_sites(part, tips, &cells);
     }
     sites_s += seconds_since(t0);
     t0 = std::chrono::steady_clock::now();
@@ -290,219 +346,242 @@ StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& 
     auto built = build_base_mesh(part, cells.sites, cells.cell_of, &base_report);
     if (!built.ok()) return built.status().with_context("component " + std::to_string(c));
     base_s += seconds_since(t0);
-    rep.promoted_vertices += base_report.promoted_vertices;
+    rep_.promoted_vertices += base_report.promoted_vertices;
 
-    const int32_t input_offset = static_cast<int32_t>(input.positions.size());
-    const int32_t face_offset = static_cast<int32_t>(base.mesh.triangles.size());
-    append_mesh(input, part);
-    append_mesh(base.mesh, built->mesh);
-    for (int32_t v : built->input_vertex) base.input_vertex.push_back(v + input_offset);
+    const int32_t input_offset = static_cast<int32_t>(input_.positions.size());
+    const int32_t face_offset = static_cast<int32_t>(base_.mesh.triangles.size());
+    append_mesh(input_, part);
+    append_mesh(base_.mesh, built->mesh);
+    for (int32_t v : built->input_vertex) base_.input_vertex.push_back(v + input_offset);
     for (ParamPoint p : built->param) {
       p.face += face_offset;
-      base.param.push_back(p);
+      base_.param.push_back(p);
     }
   }
-  rep.seconds_sites = sites_s;
-  rep.seconds_base = base_s;
-  rep.base_vertices = base.mesh.positions.size();
-  progress("base mesh: " + std::to_string(rep.base_vertices) + " vertices (" + std::to_string(rep.curled_sites) +
-           " sites added in curled cells, " + std::to_string(rep.tip_sites) + " at the tips of narrow holes, " +
-           std::to_string(rep.promoted_vertices) + " kept by the collapses), " +
-           std::to_string(base.mesh.triangles.size()) + " triangles; sites " + std::to_string(sites_s) +
-           " s, collapses " + std::to_string(base_s) + " s");
+  rep_.seconds_sites = sites_s;
+  rep_.seconds_base = base_s;
+  rep_.base_vertices = base_.mesh.positions.size();
+  RemeshProgress p;
+  p.step = RemeshStep::kBaseMesh;
+  p.triangles = base_.mesh.triangles.size();
+  p.seconds = sites_s + base_s;
+  progress(p);
+  return ok_status();
+}
 
-  start = std::chrono::steady_clock::now();
+Status Remesher::refine_levels() {
+  const auto start = std::chrono::steady_clock::now();
   RefineOptions refine_options;
-  refine_options.levels = options.levels;
-  refine_options.threshold = options.threshold;
-  refine_options.uniform = options.uniform;
-  // The threshold judged on a uniform refinement where the input supports
-  // one: at 5 levels, against the paper's order, armadillo eps 4 at 99% of
-  // uniform's triangles 69.36 -> 71.82 dB (uniform 72.20), nefertiti eps 16
-  // at 64% 73.06 -> 74.67 dB (uniform 75.61), the bunny eps 16 at 49%
-  // 68.41 -> 69.52 dB (uniform 67.14; both before boundary sites kept to
-  // their loops, which took them to 73.49 and 74.88), igea eps 16 at 58%
-  // 80.08 -> 79.28 dB (uniform 86.45; Eq. 5 is not geometric).
-  refine_options.threshold_after_uniform = !options.uniform && options.levels > 0 && !too_few_for_uniform;
-  rep.threshold_after_uniform = refine_options.threshold_after_uniform;
-  if (!options.uniform && options.levels > 0 && too_few_for_uniform)
-    progress("threshold: the input is too sparse for " + std::to_string(options.levels) +
-             " uniform levels; Eq. 5 decides level by level (the paper's order)");
-  if (options.tolerance_db > 0.0)
-    refine_options.tolerance = bounding_box_diagonal(mesh.positions) * std::pow(10.0, -options.tolerance_db / 20.0);
-  refine_options.max_lloyd_iterations = options.max_lloyd_iterations;
-  refine_options.follow_detours = options.follow_detours;
-  refine_options.progress = options.progress;
-  SRCODEC_ASSIGN_OR_RETURN(RefineResult refined, refine(input, base, refine_options, &rep.levels));
-  rep.seconds_refine = seconds_since(start);
+  refine_options.levels = options_.levels;
+  refine_options.threshold = options_.threshold;
+  refine_options.uniform = options_.uniform;
+  // Eq. 5 judged on a uniform refinement where the input supports one: each
+  // adaptive level relaxed on its own relaxes into worse tangles at thin
+  // parts, so the paper's order measures lower for as many triangles.
+  refine_options.threshold_after_uniform = !options_.uniform && options_.levels > 0 && !too_few_for_uniform_;
+  rep_.threshold_after_uniform = refine_options.threshold_after_uniform;
+  if (!options_.uniform && options_.levels > 0 && too_few_for_uniform_) {
+    RemeshProgress p;
+    p.step = RemeshStep::kThresholdLevelByLevel;
+    p.levels = options_.levels;
+    progress(p);
+  }
+  if (options_.tolerance_db > 0.0)
+    refine_options.tolerance = bounding_box_diagonal(mesh_.positions) * std::pow(10.0, -options_.tolerance_db / 20.0);
+  refine_options.max_lloyd_iterations = options_.max_lloyd_iterations;
+  refine_options.progress = options_.progress;
+  SRCODEC_ASSIGN_OR_RETURN(refined_, refine(input_, base_, refine_options, &rep_.levels));
+  rep_.seconds_refine = seconds_since(start);
+  positions_ = std::move(refined_.positions);
+  for (size_t b = 0; b < base_.mesh.positions.size(); ++b) base_.mesh.positions[b] = positions_[b];  // Lloyd moved them
+  return ok_status();
+}
 
-  std::vector<Eigen::Vector3d> positions = std::move(refined.positions);
-  for (size_t b = 0; b < base.mesh.positions.size(); ++b) base.mesh.positions[b] = positions[b];  // Lloyd moved them
-  const int32_t levels = static_cast<int32_t>(rep.levels.size());
-  if (options.fit_surface && levels > 0) {
-    const LevelsToMove moving = levels_to_move(refined.hierarchy, levels, base.mesh.positions.size(), positions.size());
-    rep.fit = fit_to_surface(mesh, input, moving.triangles, moving.fixed, &positions);
-    progress("fit: " + std::to_string(rep.fit.moved) + " vertices moved off the input (mean " +
-             std::to_string(rep.fit.mean_offset) + "), " + std::to_string(rep.fit.refused) +
-             " moves undone where a triangle would turn, fold or pleat; then " +
-             std::to_string(rep.fit.folded_by_nearest_input) + " folded (recount), " + std::to_string(rep.fit.pleats) +
-             " pleats, " + std::to_string(rep.fit.seconds) + " s");
-  }
-  SemiRegularMesh out{std::move(base.mesh), std::move(refined.hierarchy), std::move(positions), levels};
-  // The input's sides, search and components, built once for every
-  // untangling and unsplitting pass below.
-  std::unique_ptr<UntangleInput> untangle_input;
-  auto untangle_data = [&]() -> const UntangleInput& {
-    if (!untangle_input) untangle_input = std::make_unique<UntangleInput>(input);
-    return *untangle_input;
-  };
-  // The untangling (last; with --max-loss also before the coarsening, so
-  // that its loss is judged against the untangled full refinement).
-  auto untangle_out = [&](SemiRegularMesh* m, const UntangleOptions& untangle_options) {
-    const LevelsToMove tangled = levels_to_move(m->hierarchy, m->levels, m->base.positions.size(), m->positions.size());
-    const auto set_up = std::chrono::steady_clock::now();
-    UntangleReport r = untangle(untangle_data(), tangled.triangles, tangled.fixed, &m->positions, untangle_options);
-    r.seconds = seconds_since(set_up);  // with the input's set-up, the first time
-    const TangleCount &was = r.before, &now = r.after;
-    auto counts = [](size_t folded, size_t pleats) {
-      return std::to_string(folded) + " folded, " + std::to_string(pleats) + " pleats";
+void Remesher::fit() {
+  const int32_t levels = static_cast<int32_t>(rep_.levels.size());
+  if (!options_.fit_surface || levels == 0) return;
+  const LevelsToMove moving =
+      levels_to_move(refined_.hierarchy, levels, base_.mesh.positions.size(), positions_.size());
+  rep_.fit = fit_to_surface(mesh_, input_, moving.triangles, moving.fixed, &positions_);
+  RemeshProgress p;
+  p.step = RemeshStep::kFit;
+  p.seconds = rep_.fit.seconds;
+  progress(p);
+}
+
+// The untangling (last; with --max-loss also before the coarsening, so
+// that its loss is judged against the untangled full refinement).
+void Remesher::untangle_out(SemiRegularMesh* m, const UntangleOptions& untangle_options) {
+  const LevelsToMove tangled = levels_to_move(m->hierarchy, m->levels, m->base.positions.size(), m->positions.size());
+  const auto set_up = std::chrono::steady_clock::now();
+  UntangleReport r = untangle(untangle_data(), tangled.triangles, tangled.fixed, &m->positions, untangle_options);
+  r.seconds = seconds_since(set_up);  // with the input's set-up, the first time
+  if (rep_.untangle.rounds == 0) rep_.untangle.before = r.before;
+  rep_.untangle.after = r.after;
+  rep_.untangle.moved += r.moved;
+  rep_.untangle.joint_moved += r.joint_moved;
+  rep_.untangle.rounds += r.rounds;
+  rep_.untangle.seconds += r.seconds;
+  RemeshProgress p;
+  p.step = RemeshStep::kUntangle;
+  p.untangle = &r;
+  p.wide = untangle_options.wide_candidates > 0;
+  p.seconds = r.seconds;
+  progress(p);
+}
+
+Status Remesher::coarsen(SemiRegularMesh* out, int32_t levels) {
+  CoarseningOptions coarsening;
+  coarsening.max_loss_db = options_.max_loss_db;
+  coarsening.refit = options_.fit_surface;  // --no-fit-surface keeps the sites where they are
+  coarsening.deepen_fraction = options_.deepen_fraction;
+  SRCODEC_ASSIGN_OR_RETURN(*out, coarsen_by_measured_error(mesh_, input_, *out, coarsening, &rep_.coarsening));
+  // The level reports: the last one's splits are those kept (fewer
+  // levels when none is).
+  rep_.levels.resize(static_cast<size_t>(out->levels));
+  for (size_t l = 0; l < rep_.levels.size(); ++l) rep_.levels[l].level = static_cast<int>(l) + 1;
+  if (out->levels > levels) {  // deepened: the triangles chosen, and of both last levels, those split in the end
+    auto split_at = [&](int32_t level) {
+      size_t n = 0;
+      for (const TriangleHierarchy::Node& node : out->hierarchy.nodes())
+        n += node.level == level && node.first_child >= 0;
+      return n;
     };
-    progress(std::string(untangle_options.wide_candidates > 0 ? "untangle (wide search): " : "untangle: ") +
-             std::to_string(r.moved) + " moves (" + std::to_string(r.joint_moved) + " joint) in " +
-             std::to_string(r.rounds) + " rounds; finest level " + counts(was.folded, was.pleats) + " -> " + counts(now.folded, now.pleats) +
-             "; coarser levels " + counts(was.coarser_folded, was.coarser_pleats) + " -> " +
-             counts(now.coarser_folded, now.coarser_pleats) + ", " + std::to_string(r.seconds) + " s");
-    if (rep.untangle.rounds == 0) rep.untangle.before = r.before;
-    rep.untangle.after = r.after;
-    rep.untangle.moved += r.moved;
-    rep.untangle.joint_moved += r.joint_moved;
-    rep.untangle.rounds += r.rounds;
-    rep.untangle.seconds += r.seconds;
-  };
-  const bool untangling = options.fit_surface && options.untangle && levels > 0;
-  if (untangling && options.max_loss_db > 0.0) untangle_out(&out, {});
-  if (options.max_loss_db > 0.0 && levels > 0) {
-    CoarseningOptions coarsening;
-    coarsening.max_loss_db = options.max_loss_db;
-    coarsening.refit = options.fit_surface;  // --no-fit-surface keeps the sites where they are
-    coarsening.deepen_fraction = options.deepen_fraction;
-    SRCODEC_ASSIGN_OR_RETURN(out, coarsen_by_measured_error(mesh, input, out, coarsening, &rep.coarsening));
-    // The level reports: the last one's splits are those kept (fewer
-    // levels when none is).
-    rep.levels.resize(static_cast<size_t>(out.levels));
-    for (size_t l = 0; l < rep.levels.size(); ++l) rep.levels[l].level = static_cast<int>(l) + 1;
-    if (out.levels > levels) {  // deepened: the triangles chosen, and of both last levels, those split in the end
-      auto split_at = [&](int32_t level) {
-        size_t n = 0;
-        for (const TriangleHierarchy::Node& node : out.hierarchy.nodes())
-          n += node.level == level && node.first_child >= 0;
-        return n;
-      };
-      RefineLevelReport& asked = rep.levels[static_cast<size_t>(levels) - 1];
-      const size_t kept = split_at(levels - 1);
-      asked.within_tolerance = asked.split > kept ? asked.split - kept : 0;
-      asked.split = kept;
-      rep.levels.back().selected = rep.coarsening.deepened;
-      rep.levels.back().split = split_at(levels);
-    }
-    if (out.levels == levels) {
-      RefineLevelReport& last = rep.levels.back();
-      last.within_tolerance = rep.coarsening.undone;
-      last.split = rep.coarsening.candidates - rep.coarsening.undone;
-    }
-    const std::string deepened =
-        rep.coarsening.deepened > 0 ? std::to_string(rep.coarsening.deepened) + " triangles of level " +
-                                          std::to_string(levels) + " split once more; " : "";
-    progress("measured coarsening: " + deepened + std::to_string(rep.coarsening.undone) + " of " +
-             std::to_string(rep.coarsening.candidates) + " splits of level " +
-             (rep.coarsening.deepened > 0 ? std::to_string(levels - 1) + " and " + std::to_string(levels)
-                                          : std::to_string(levels - 1)) +
-             " undone, " + std::to_string(rep.coarsening.triangles_before) + " -> " +
-             std::to_string(rep.coarsening.triangles_after) + " triangles, estimated loss " +
-             std::to_string(rep.coarsening.estimated_loss_db) + " dB (" + std::to_string(rep.coarsening.kept_for_folds) +
-             " kept where undoing them folded or pleated; " + std::to_string(rep.coarsening.refit) +
-             " vertices fitted again, " + std::to_string(rep.coarsening.passes) + " pass(es), " +
-             std::to_string(rep.coarsening.estimated_loss_before_refit_db) + " dB before the first refit); then " +
-             std::to_string(rep.coarsening.folds.folded_by_nearest_input) + " folded (recount), " +
-             std::to_string(rep.coarsening.folds.pleats) + " pleats, " + std::to_string(rep.coarsening.seconds) + " s");
+    RefineLevelReport& asked = rep_.levels[static_cast<size_t>(levels) - 1];
+    const size_t kept = split_at(levels - 1);
+    asked.within_tolerance = asked.split > kept ? asked.split - kept : 0;
+    asked.split = kept;
+    rep_.levels.back().selected = rep_.coarsening.deepened;
+    rep_.levels.back().split = split_at(levels);
   }
-  if (untangling && out.levels > 0) untangle_out(&out, {});
-  // Where triangles stay tangled: splits of the level above the finest
-  // undone around them (remesh/unsplit_tangles.h) and the untangling run
-  // again. First around the finest level's tangled triangles; then also at
-  // the corners of the coarser levels' (a corner with no finest triangles
-  // around it moves as its own levels ask). A pass is kept when it leaves
-  // fewer tangled triangles, all levels counted; up to 4 passes of each
-  // kind. (Fitting the corners left whole to the input again, as the
-  // measured coarsening does, cost ogre 9 s a pass and 0.1 dB.)
-  const bool unsplitting = options.unsplits() && out.levels > 0;
-  for (int kind = 0; unsplitting && kind < 2; ++kind)
-    for (int pass = 0; pass < 4 && rep.untangle.after.total() > 0; ++pass) {
+  if (out->levels == levels) {
+    RefineLevelReport& last = rep_.levels.back();
+    last.within_tolerance = rep_.coarsening.undone;
+    last.split = rep_.coarsening.candidates - rep_.coarsening.undone;
+  }
+  RemeshProgress p;
+  p.step = RemeshStep::kMeasuredCoarsening;
+  p.level = levels;
+  p.seconds = rep_.coarsening.seconds;
+  progress(p);
+  return ok_status();
+}
+
+// Where triangles stay tangled: splits of the level above the finest
+// undone around them (remesh/unsplit_tangles.h) and the untangling run
+// again. First around the finest level's tangled triangles; then also at
+// the corners of the coarser levels' (a corner with no finest triangles
+// around it moves as its own levels ask). A pass is kept when it leaves
+// fewer tangled triangles, all levels counted; up to 4 passes of each
+// kind. The corners left whole are not fitted to the input again (as the
+// measured coarsening does): that cost time and PSNR.
+Status Remesher::unsplit(SemiRegularMesh* out) {
+  for (int kind = 0; kind < 2; ++kind)
+    for (int pass = 0; pass < 4 && rep_.untangle.after.total() > 0; ++pass) {
       UnsplitOptions unsplit;
       unsplit.coarser = kind == 1;
       UnsplitReport u;
-      SRCODEC_ASSIGN_OR_RETURN(SemiRegularMesh next, unsplit_tangles(untangle_data().side_at(), out, unsplit, &u));
-      rep.unsplit.seconds += u.seconds;
+      SRCODEC_ASSIGN_OR_RETURN(SemiRegularMesh next, unsplit_tangles(untangle_data().side_at(), *out, unsplit, &u));
+      rep_.unsplit.seconds += u.seconds;
       if (u.stars == 0) break;
-      const UntangleReport untangled = rep.untangle;
+      const UntangleReport untangled = rep_.untangle;
       untangle_out(&next, {});
-      const bool kept = rep.untangle.after.total() < untangled.after.total();
-      progress("unsplit" + std::string(unsplit.coarser ? " (coarser levels too)" : "") + ": " +
-               std::to_string(u.stars) + " stars of level " + std::to_string(out.levels - 1) + " left whole (" +
-               std::to_string(u.undone) + " splits undone) and untangled again: tangled triangles, all levels, " +
-               std::to_string(untangled.after.total()) + " -> " + std::to_string(rep.untangle.after.total()) +
-               (kept ? ", kept" : ", not kept"));
+      const bool kept = rep_.untangle.after.total() < untangled.after.total();
+      RemeshProgress p;
+      p.step = RemeshStep::kUnsplit;
+      p.unsplit = &u;
+      p.coarser = unsplit.coarser;
+      p.level = out->levels - 1;
+      p.tangled_before = untangled.after.total();
+      p.tangled_after = rep_.untangle.after.total();
+      p.kept = kept;
+      p.seconds = u.seconds;
+      progress(p);
       if (!kept) {
-        rep.untangle = untangled;
+        rep_.untangle = untangled;
         break;
       }
-      out = std::move(next);
-      ++rep.unsplit.passes;
-      rep.unsplit.stars += u.stars;
-      rep.unsplit.undone += u.undone;
-      if (static_cast<size_t>(out.levels) == rep.levels.size()) {
-        RefineLevelReport& last = rep.levels.back();
+      *out = std::move(next);
+      ++rep_.unsplit.passes;
+      rep_.unsplit.stars += u.stars;
+      rep_.unsplit.undone += u.undone;
+      if (static_cast<size_t>(out->levels) == rep_.levels.size()) {
+        RefineLevelReport& last = rep_.levels.back();
         last.split -= std::min(last.split, u.undone);
       }
     }
-  // Last, where triangles stay tangled: one more untangling that also tries,
-  // for each free vertex, the 128 input vertices nearest it and as many
-  // nearest its neighbours' centroid (UntangleOptions::wide_candidates). At
-  // the defaults, against none (folded + pleats, finest + coarser; PSNR at
-  // 1M samples, seeds 1 and 2): beast 14 + 14, 1 + 22 -> 8 + 12, 0 + 21 at
-  // 78.32 -> 78.33 dB; beast_tri 8 + 11, 1 + 17 -> 5 + 10, 0 + 15 at 75.66 ->
-  // 75.52; ogre 4 + 13, 1 + 23 -> 3 + 12, 0 + 23 at 75.52 -> 75.55. The same
-  // search in every pass left fewer finest folds (6, 3, 2) but moved far
-  // more vertices: beast 78.08, beast_tri 75.13, ogre 76.13 dB; 32 each
-  // instead of 128 left beast 12 + 13 (twenty-ninth session).
-  if (untangling && out.levels > 0 && rep.untangle.after.total() > 0) {
-    UntangleOptions wide;
-    wide.wide_candidates = 128;
-    untangle_out(&out, wide);
-  }
-  // The levels' triangles, for the sliver relaxation and for the places of
-  // the tangles left; it moves vertices only, so both see the same levels.
-  const bool relaxing = options.relax_slivers && options.fit_surface && out.levels > 0;
-  const bool placing = rep.untangle.rounds > 0 && rep.untangle.after.total() > 0;
+  return ok_status();
+}
+
+// The levels' triangles, for the sliver relaxation and for the places of
+// the tangles left; it moves vertices only, so both see the same levels.
+void Remesher::relax_and_place(SemiRegularMesh* out) {
+  const bool relaxing = options_.relax_slivers && options_.fit_surface && out->levels > 0;
+  const bool placing = rep_.untangle.rounds > 0 && rep_.untangle.after.total() > 0;
   const LevelsToMove final_levels =
-      relaxing || placing ? levels_to_move(out.hierarchy, out.levels, out.base.positions.size(), out.positions.size())
-                          : LevelsToMove{};
+      relaxing || placing
+          ? levels_to_move(out->hierarchy, out->levels, out->base.positions.size(), out->positions.size())
+          : LevelsToMove{};
   // No triangle of any level folds or pleats more or less (relax_slivers
   // moves no vertex of a tangled triangle and refuses moves that tangle
   // one), so the untangling's counts stay the output's.
   if (relaxing) {
-    rep.slivers = relax_slivers(untangle_data().side_at(), final_levels.triangles[static_cast<size_t>(out.levels)],
-                                final_levels.triangles[static_cast<size_t>(out.levels) - 1], final_levels.fixed,
-                                &out.positions);
-    progress("slivers: " + std::to_string(rep.slivers.moved) + " moves; finest triangles of quality below " +
-             std::to_string(SliverRelaxOptions{}.poor_quality).substr(0, 4) + ": " +
-             std::to_string(rep.slivers.poor_before) + " -> " + std::to_string(rep.slivers.poor_after) + ", " +
-             std::to_string(rep.slivers.seconds) + " s");
+    rep_.slivers = relax_slivers(untangle_data().side_at(), final_levels.triangles[static_cast<size_t>(out->levels)],
+                                 final_levels.triangles[static_cast<size_t>(out->levels) - 1], final_levels.fixed,
+                                 &out->positions);
+    RemeshProgress p;
+    p.step = RemeshStep::kSlivers;
+    p.poor_quality = SliverRelaxOptions{}.poor_quality;
+    p.seconds = rep_.slivers.seconds;
+    progress(p);
   }
   if (placing)
-    rep.tangled_places = tangled_places(untangle_data(), final_levels.triangles, out.positions,
-                                        kTangledPlaceReach * bounding_box_diagonal(mesh.positions));
+    rep_.tangled_places = tangled_places(untangle_data(), final_levels.triangles, out->positions,
+                                         kTangledPlaceReach * bounding_box_diagonal(mesh_.positions));
+}
+
+StatusOr<SemiRegularMesh> Remesher::run(RemeshReport* report, bool fit_levels) {
+  SRCODEC_RETURN_IF_ERROR(split_and_oversample());
+  raise_default_base();
+  SRCODEC_ASSIGN_OR_RETURN(const bool enough, enough_for_levels(fit_levels));
+  if (!enough) return with_fewer_levels(report);
+  SRCODEC_RETURN_IF_ERROR(build_base());
+  SRCODEC_RETURN_IF_ERROR(refine_levels());
+  fit();
+  const int32_t levels = static_cast<int32_t>(rep_.levels.size());
+  SemiRegularMesh out{std::move(base_.mesh), std::move(refined_.hierarchy), std::move(positions_), levels};
+  const bool untangling = options_.fit_surface && options_.untangle && levels > 0;
+  if (untangling && options_.max_loss_db > 0.0) untangle_out(&out, {});
+  if (options_.max_loss_db > 0.0 && levels > 0) SRCODEC_RETURN_IF_ERROR(coarsen(&out, levels));
+  if (untangling && out.levels > 0) untangle_out(&out, {});
+  if (options_.unsplits() && out.levels > 0) SRCODEC_RETURN_IF_ERROR(unsplit(&out));
+  // Last, where triangles stay tangled: one more untangling that also tries,
+  // for each free vertex, the 128 input vertices nearest it and as many
+  // nearest its neighbours' centroid (UntangleOptions::wide_candidates): an
+  // input vertex carries its own side, which can put a corner back on its
+  // neighbours' sheet. Only here, not in every pass: everywhere it moves far
+  // more vertices and costs PSNR.
+  if (untangling && out.levels > 0 && rep_.untangle.after.total() > 0) {
+    UntangleOptions wide;
+    wide.wide_candidates = 128;
+    untangle_out(&out, wide);
+  }
+  relax_and_place(&out);
   return out;
+}
+
+}  // namespace
+
+StatusOr<SemiRegularMesh> remesh(const TriangleMesh& mesh, const RemeshOptions& options, RemeshReport* report) {
+  RemeshReport local;
+  RemeshReport& rep = report ? *report : local;
+  rep = RemeshReport{};
+  SRCODEC_RETURN_IF_ERROR(check_options(options));
+  if (mesh.triangles.empty()) return invalid_mesh("remesh: the mesh has no triangles");
+  Remesher remesher(mesh, options, rep);
+  const bool fit = options.fit_levels && options.base_vertices == 0;
+  if (fit && mesh.positions.size() < kMinDefaultBase) return remesher.whole_input_as_base(report);
+  return remesher.run(report, fit);
 }
 
 }  // namespace srcodec

@@ -17,6 +17,7 @@
 #include "remesh/untangle.h"
 #include "remesh/measured_coarsening.h"
 #include "remesh/oversample.h"
+#include "remesh/progress.h"
 #include "remesh/refine.h"
 #include "format/semi_regular/semi_regular_mesh.h"
 
@@ -31,13 +32,15 @@ struct RemeshOptions {
   bool fit_levels = false;
   // Base mesh vertices over all components; 0 picks default_base_vertices.
   size_t base_vertices = 0;
-  double threshold = 0.0;  // Eq. 5's epsilon, in vertices of the oversampled input
-  bool uniform = false;    // split everything; the threshold is then unused
-  // Geometric criterion (RefineOptions::tolerance) as a PSNR in dB, the
-  // project's metric's scale: after the last level, a triangle's split is
-  // undone where the input's RMS distance to its plane is within the
-  // bounding-box diagonal x 10^(-dB/20). Applies with uniform or the
-  // threshold; 0 turns it off.
+  // The paper's adaptivity (Eq. 5): a triangle is split when each corner's
+  // Voronoi cell holds more than this many vertices of the oversampled input.
+  double threshold = 0.0;
+  bool uniform = false;  // split everything; the threshold is then unused
+  // Geometric criterion (RefineOptions::tolerance; ours, kept for the
+  // experiments that compare it with Eq. 5) as a PSNR in dB, the metric's
+  // scale: after the last level, a triangle's split is undone where the
+  // input's RMS distance to its plane is within the bounding-box diagonal x
+  // 10^(-dB/20). Applies with uniform or the threshold; 0 turns it off.
   double tolerance_db = 0.0;
   // Adaptive by measured error (remesh/measured_coarsening.h, ours): after
   // the uniform refinement and the fit, the last level's splits that gain
@@ -57,9 +60,9 @@ struct RemeshOptions {
   int max_lloyd_iterations = 10;  // per refinement level
   // After the refinement, move the vertices above the base mesh off the
   // input's vertices, along their normals, to centre the finest level's
-  // triangles on the input surface (remesh/fit.h; ours). Boundary vertices
-  // stay. Off: every vertex where the paper's method put it (a site on an
-  // input vertex, with the exceptions RefineLevelReport counts).
+  // triangles on the input surface (remesh/fit.h; ours): a site on an input
+  // vertex leaves the chord's sag between vertices. Boundary vertices stay.
+  // Off: every vertex where the paper's method put it (the paper's runs).
   bool fit_surface = true;
   // With fit_surface, last: move the vertices of the triangles still folded
   // or in a pleat to nearby places that leave fewer of them
@@ -68,22 +71,18 @@ struct RemeshOptions {
   bool untangle = true;
   // With untangle, after it: where triangles are still folded or in a
   // pleat, the splits of the level below the finest around them undone
-  // (remesh/unsplit_tangles.h; ours), then untangled again. (The CLI's
-  // encode and rd turn it off: it costs bytes, docs/remesh_design.md, "Unsplitting".)
-  bool unsplit_tangles = true;
+  // (remesh/unsplit_tangles.h; ours), then untangled again. Off for every
+  // caller: an adaptive last level costs its refinement flags in every
+  // prefix of a coded file (docs/remesh_design.md, "Unsplitting").
+  bool unsplit_tangles = false;
   // Whether the unsplitting runs: it needs the fit and the untangling.
   bool unsplits() const { return fit_surface && untangle && unsplit_tangles; }
-  // Follow the input into pockets, creases and gaps narrower than an edge
-  // instead of bridging them (RefineOptions::follow_detours; ours, off by
-  // default): the bunny at 5 levels no longer swings by 8 dB with the base
-  // size, but beast, whose lips and claws are thin flaps, loses 4 dB.
-  bool follow_detours = false;
   // With fit_surface, last: the finest level's own vertices at slivers move
   // along their tangent plane where that makes the triangles around them
-  // rounder (remesh/relax_slivers.h; ours). Fewer triangles turn over after
-  // coding.
+  // rounder (remesh/relax_slivers.h; ours): slivers are where coding error
+  // turns triangles over.
   bool relax_slivers = true;
-  std::function<void(const std::string&)> progress;  // one line per stage, may be empty
+  RemeshProgressCallback progress;  // after each step (remesh/progress.h), may be empty
 };
 
 struct RemeshReport {

@@ -2,10 +2,11 @@
 // in the paper): after the untangling (remesh/untangle.h), a triangle of the
 // finest level still folded or in a pleat is taken out with its siblings by
 // leaving its parent, and the parent's neighbours around one corner,
-// unsplit. The remesher then untangles again (RemeshOptions::unsplit_tangles).
+// unsplit. The remesher then untangles again (RemeshOptions::unsplit_tangles,
+// off by default: it costs bytes in every prefix of a coded file).
 //
-// Why: where the input is crumpled at the scale of a finest triangle (beast's
-// mouth and claws, ogre's thin pieces) no place of the finest level's
+// Why: where the input is crumpled at the scale of a finest triangle (a
+// mouth, claws, thin pieces) no place of the finest level's
 // vertices, moved one at a time or together, faces every triangle out; the
 // level above, with fewer vertices to place, usually can be. The paper
 // refines only where a triangle's cells hold enough input vertices; this
@@ -19,15 +20,14 @@
 //
 // Why not everywhere: where a star's children reach far out of it (a thin
 // spike or flap the finest level follows and the level above would cut
-// off), leaving it whole costs more than the folds: on beast_tri, the
-// stars reaching out more than twice their edges cost 1 dB of the 1.2 lost.
+// off), leaving it whole costs more PSNR than the folds are worth.
 #pragma once
 
 #include <cstddef>
 
 #include "format/mesh.h"
 #include "format/status.h"
-#include "remesh/fit.h"
+#include "remesh/folds.h"
 #include "format/semi_regular/semi_regular_mesh.h"
 
 namespace srcodec {
@@ -39,8 +39,7 @@ struct UnsplitOptions {
   // Also at the corners of the coarser levels' tangled triangles: the star
   // among them chosen as for the finest level's. The coarser levels keep
   // their triangles, but a corner with no finest triangles around it is
-  // free to move as its own levels ask (on beast, after the passes without
-  // this: 79 -> 63 tangled triangles, all levels, for 0.05 dB).
+  // free to move as its own levels ask.
   bool coarser = false;
 };
 

@@ -9,6 +9,7 @@
 
 #include "remesh/adjacency.h"
 #include "remesh/fit.h"
+#include "remesh/folds.h"
 #include "remesh/geometry.h"
 #include "remesh/point_cloud.h"
 #include "remesh/small_lp.h"
@@ -129,16 +130,16 @@ class Judge {
       for (int32_t t : tris) {
         const auto& tri = levels_[k][static_cast<size_t>(t)];
         const double f = facing(x, side, tri);
-        if (!(f > kFoldedFacing)) {
+        if (folded(f)) {
           ++count;
-          e += kFoldedFacing - f;
+          e += fold_depth(f);
         }
         for (int32_t u : adjacency_[k].across[static_cast<size_t>(t)]) {
           if (u < 0 || (u < t && std::binary_search(tris.begin(), tris.end(), u))) continue;
           const Eigen::Vector3d a = triangle_normal(x, tri), b = triangle_normal(x, levels_[k][static_cast<size_t>(u)]);
           if (pleat(a, b)) {
             ++count;
-            e += -a.dot(b) / std::max(a.norm() * b.norm(), 1e-300) - 0.8660254;
+            e += pleat_depth(a, b);
           }
         }
       }
@@ -292,7 +293,7 @@ bool joint_moves(const Judge& judge, const std::vector<Eigen::Vector3d>& x, cons
       row.norm = std::sqrt(squared);
       if (!(row.norm > 0.0)) continue;
       const double sigma = r.dot(triangle_normal(x, tri));
-      row.tangled = !(facing(x, side, tri) > kFoldedFacing);
+      row.tangled = folded(x, side, tri);
       row.slack = row.tangled ? sigma : 0.5 * sigma;
       rows.push_back(row);
     }
@@ -336,6 +337,322 @@ bool joint_moves(const Judge& judge, const std::vector<Eigen::Vector3d>& x, cons
   return true;
 }
 
+// One call's state: the positions, each vertex's side, the judge and the
+// tangled triangles (`marked`, per level), shared by the rounds of single
+// moves and the joint moves.
+struct Untangler {
+  Untangler(const UntangleInput& input, const std::vector<Triangles>& levels_in, const std::vector<char>& fixed_in,
+            std::vector<Eigen::Vector3d>* positions, const UntangleOptions& options_in, UntangleReport* report_in)
+      : sides(input.mesh()),
+        levels(levels_in),
+        fixed(fixed_in),
+        x(*positions),
+        options(options_in),
+        report(*report_in),
+        n(x.size()),
+        judge(input.side_at(), levels, n),
+        side_at(judge.side_at()),
+        side(side_at.of(x)),
+        fine(levels.back()),
+        fine_adj(judge.adjacency(levels.size() - 1)),
+        component(input.component()),
+        occupancy(x) {
+    report.before = judge.count(x, side, &marked);
+    report.after = report.before;
+  }
+
+  std::vector<int32_t> neighbours(int32_t v) const {
+    std::vector<int32_t> out;
+    for (auto it = fine_adj.begin(v); it != fine_adj.end(v); ++it)
+      for (int32_t u : fine[static_cast<size_t>(*it)])
+        if (u != v) out.push_back(u);
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+  bool movable(int32_t v) const { return !(static_cast<size_t>(v) < fixed.size() && fixed[static_cast<size_t>(v)]); }
+  // Base vertices, which may only hop onto input vertices of their own
+  // component (the component of the input vertex nearest them).
+  bool hops(int32_t v) const {
+    return options.input_vertex_hops > 0 && static_cast<size_t>(v) < fixed.size() &&
+           fixed[static_cast<size_t>(v)] == 2;
+  }
+  // q onto the input's tangent plane near it.
+  bool press(const Eigen::Vector3d& q, Eigen::Vector3d* out) const {
+    const std::vector<uint32_t> near = side_at.nearest(q, 1);
+    if (near.empty()) return false;
+    const Eigen::Vector3d& normal = side_at.normal(near[0]);
+    *out = q - (q - sides.positions[near[0]]).dot(normal) * normal;
+    return true;
+  }
+
+  std::vector<int32_t> round_order() const;
+  bool candidates(int32_t v, const std::vector<int32_t>& ring, const Eigen::Vector3d& centroid,
+                  std::vector<Eigen::Vector3d>* candidates) const;
+  bool move_one(int32_t v);
+  void run_rounds();
+  std::vector<std::vector<int32_t>> tangled_clusters() const;
+  size_t move_cluster(const std::vector<int32_t>& cluster);
+  size_t joint_phase();
+
+  const TriangleMesh& sides;
+  const std::vector<Triangles>& levels;
+  const std::vector<char>& fixed;
+  std::vector<Eigen::Vector3d>& x;
+  const UntangleOptions& options;
+  UntangleReport& report;
+  const size_t n;
+  const Judge judge;
+  const FoldCounter::Sides& side_at;
+  std::vector<Eigen::Vector3d> side;
+  const Triangles& fine;
+  const LevelAdjacency& fine_adj;
+  const std::vector<int32_t>& component;
+  Occupancy occupancy;
+  std::vector<std::vector<char>> marked;
+};
+
+// The vertices of the tangled triangles of any level, and their neighbours
+// on the finest, that may move.
+std::vector<int32_t> Untangler::round_order() const {
+  std::vector<char> take(n, 0);
+  for (size_t k = 0; k < levels.size(); ++k)
+    for (size_t t = 0; t < levels[k].size(); ++t)
+      if (marked[k][t])
+        for (int32_t v : levels[k][t]) take[static_cast<size_t>(v)] = 1;
+  std::vector<int32_t> order;
+  for (size_t v = 0; v < n; ++v)
+    if (take[v]) {
+      if (movable(static_cast<int32_t>(v)) || hops(static_cast<int32_t>(v))) order.push_back(static_cast<int32_t>(v));
+      for (int32_t u : neighbours(static_cast<int32_t>(v)))
+        if (movable(u) || hops(u)) order.push_back(u);
+    }
+  std::sort(order.begin(), order.end());
+  order.erase(std::unique(order.begin(), order.end()), order.end());
+  return order;
+}
+
+// The places vertex v may move to (UntangleOptions); false when it has
+// none to try.
+bool Untangler::candidates(int32_t v, const std::vector<int32_t>& ring, const Eigen::Vector3d& centroid,
+                           std::vector<Eigen::Vector3d>* out) const {
+  std::vector<Eigen::Vector3d>& candidates = *out;
+  const Eigen::Vector3d was = x[static_cast<size_t>(v)];
+  // Input vertices, each tried once: the searches around v and around its
+  // centroid overlap, and a repeat could not win (Choice::offer takes
+  // only a better one).
+  std::vector<uint32_t> inputs;
+  auto add_input = [&](uint32_t i) {
+    if (std::find(inputs.begin(), inputs.end(), i) != inputs.end()) return;
+    inputs.push_back(i);
+    candidates.push_back(sides.positions[i]);
+  };
+  if (hops(v)) {
+    const std::vector<uint32_t> here = side_at.nearest(was, 1);
+    if (here.empty()) return false;
+    for (const Eigen::Vector3d& around : {was, centroid})
+      for (uint32_t i : side_at.nearest(around, options.input_vertex_hops))
+        if (component[i] == component[here[0]]) add_input(i);
+    return true;
+  }
+  auto add_pressed = [&](const Eigen::Vector3d& q) {
+    Eigen::Vector3d pressed;
+    if (press(q, &pressed)) candidates.push_back(pressed);
+  };
+  for (double w : {1.0, 0.5, 0.25}) {
+    const Eigen::Vector3d q = was + w * (centroid - was);
+    candidates.push_back(q);
+    add_pressed(q);
+  }
+  for (uint32_t i : side_at.nearest(centroid, options.input_candidates)) add_input(i);
+  if (options.wide_candidates > 0)
+    for (const Eigen::Vector3d& around : {was, centroid})
+      for (uint32_t i : side_at.nearest(around, options.wide_candidates)) add_input(i);
+  for (int32_t u : ring)
+    for (double w : {0.5, 0.8}) candidates.push_back(was + w * (x[static_cast<size_t>(u)] - was));
+  // And, if there is one within half the ring's mean edge, a point where
+  // every triangle at v faces out (v's side taken as it is now): pressed
+  // onto the input's tangent plane first, then as found.
+  double reach = 0.0;
+  for (int32_t u : ring) reach += (x[static_cast<size_t>(u)] - was).norm();
+  reach *= 0.5 / static_cast<double>(ring.size());
+  Eigen::Vector3d deepest, nearest;
+  if (fold_free_point(levels, judge, x, side, v, reach, &deepest, &nearest))
+    for (const Eigen::Vector3d& q : {nearest, deepest}) {
+      add_pressed(q);
+      candidates.push_back(q);
+    }
+  return true;
+}
+
+// Vertex v to the candidate leaving the fewest tangles around it (or as
+// many, less deep); true when that is better than where it was.
+bool Untangler::move_one(int32_t v) {
+  const size_t vi = static_cast<size_t>(v);
+  double e_now = 0.0;
+  const size_t now = judge.around(x, side, v, &e_now);
+  if (now == 0) return false;
+  const std::vector<int32_t> ring = neighbours(v);
+  if (ring.empty()) return false;
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (int32_t u : ring) centroid += x[static_cast<size_t>(u)];
+  centroid /= static_cast<double>(ring.size());
+  const Eigen::Vector3d was = x[vi], side_was = side[vi];
+  std::vector<Eigen::Vector3d> tries;
+  if (!candidates(v, ring, centroid, &tries)) return false;
+  Choice best{now, e_now};
+  Eigen::Vector3d best_at = was, best_side = side_was;
+  for (const Eigen::Vector3d& q : tries) {
+    if (q != was && occupancy.taken(q)) continue;
+    x[vi] = q;
+    side[vi] = side_at(q);
+    double e = 0.0;
+    const size_t c = judge.around(x, side, v, &e);
+    if (best.offer(c, e)) {
+      best_at = q;
+      best_side = side[vi];
+    }
+  }
+  const bool better = best.count < now || best.energy < e_now;
+  occupancy.move(was, best_at);
+  x[vi] = best_at;
+  side[vi] = best_side;
+  return better;
+}
+
+void Untangler::run_rounds() {
+  for (int round = 0; round < options.rounds; ++round) {
+    size_t moved = 0;
+    for (int32_t v : round_order()) moved += move_one(v);
+    report.moved += moved;
+    ++report.rounds;
+    report.after = judge.count(x, side, &marked);
+    if (moved == 0) break;
+  }
+}
+
+// The vertices of the tangled triangles, joined through them (any level)
+// into clusters.
+std::vector<std::vector<int32_t>> Untangler::tangled_clusters() const {
+  std::vector<int32_t> parent(n);
+  for (size_t v = 0; v < n; ++v) parent[v] = static_cast<int32_t>(v);
+  auto find = [&](int32_t v) {
+    while (parent[static_cast<size_t>(v)] != v)
+      v = parent[static_cast<size_t>(v)] = parent[static_cast<size_t>(parent[static_cast<size_t>(v)])];
+    return v;
+  };
+  std::vector<char> tangled(n, 0);
+  for (size_t k = 0; k < levels.size(); ++k)
+    for (size_t t = 0; t < levels[k].size(); ++t)
+      if (marked[k][t]) {
+        const auto& tri = levels[k][t];
+        for (int32_t v : tri) tangled[static_cast<size_t>(v)] = 1;
+        const int32_t a = find(tri[0]);
+        for (int c = 1; c < 3; ++c) {
+          const int32_t b = find(tri[static_cast<size_t>(c)]);
+          if (a != b) parent[static_cast<size_t>(std::max(a, b))] = std::min(a, b);
+        }
+      }
+  std::vector<std::vector<int32_t>> clusters;
+  std::unordered_map<int32_t, size_t> cluster_of;
+  for (size_t v = 0; v < n; ++v)
+    if (tangled[v]) {
+      const auto [it, fresh] = cluster_of.emplace(find(static_cast<int32_t>(v)), clusters.size());
+      if (fresh) clusters.emplace_back();
+      clusters[it->second].push_back(static_cast<int32_t>(v));
+    }
+  return clusters;
+}
+
+// One cluster, grown by its finest ring, moved together step by step;
+// returns the steps kept.
+size_t Untangler::move_cluster(const std::vector<int32_t>& cluster) {
+  size_t kept = 0;
+  std::vector<int32_t> free;
+  for (int32_t v : cluster) {
+    if (movable(v)) free.push_back(v);
+    for (int32_t u : neighbours(v))
+      if (movable(u)) free.push_back(u);
+  }
+  std::sort(free.begin(), free.end());
+  free.erase(std::unique(free.begin(), free.end()), free.end());
+  if (free.empty() || free.size() > options.joint_vertices) return 0;
+  std::vector<double> reach(free.size(), 0.0);
+  for (size_t i = 0; i < free.size(); ++i) {
+    const std::vector<int32_t> ring = neighbours(free[i]);
+    for (int32_t u : ring) reach[i] += (x[static_cast<size_t>(u)] - x[static_cast<size_t>(free[i])]).norm();
+    reach[i] *= 0.5 / static_cast<double>(std::max<size_t>(ring.size(), 1));
+  }
+  // A trust region: the reach halves when a step is not kept (the
+  // linearization holds better for smaller moves) and doubles back
+  // when one is.
+  double scale = 1.0;
+  for (int step = 0; step < 12 && scale > 0.07; ++step) {
+    double e_now = 0.0;
+    const size_t now = judge.region(x, side, free, &e_now);
+    if (now == 0) break;
+    std::vector<Eigen::Vector3d> to;
+    std::vector<double> scaled = reach;
+    for (double& r : scaled) r *= scale;
+    if (!joint_moves(judge, x, side, free, scaled, &to)) break;
+    std::vector<Eigen::Vector3d> was(free.size()), side_was(free.size());
+    for (size_t i = 0; i < free.size(); ++i) {
+      was[i] = x[static_cast<size_t>(free[i])];
+      side_was[i] = side[static_cast<size_t>(free[i])];
+    }
+    Choice best{now, e_now, 0.99};  // kept if it leaves fewer, or as many a little less deep: the next step goes on
+    std::vector<Eigen::Vector3d> best_at;
+    // The moves whole and in part (the linearization holds for small
+    // ones), each as found and pressed onto the input's tangent plane.
+    std::vector<std::vector<Eigen::Vector3d>> tries;
+    for (double w : {1.0, 0.5, 0.25, 0.125}) {
+      tries.push_back(to);
+      for (size_t i = 0; i < free.size(); ++i) tries.back()[i] = was[i] + w * (to[i] - was[i]);
+    }
+    for (const auto& found : tries)
+      for (bool pressed : {true, false}) {
+        std::vector<Eigen::Vector3d> at = found;
+        bool ok = true;
+        for (size_t i = 0; i < free.size() && ok; ++i) {
+          if (pressed) ok = press(found[i], &at[i]);
+          ok = ok && (at[i] == was[i] || !occupancy.taken(at[i]));
+        }
+        if (!ok) continue;
+        for (size_t i = 0; i < free.size(); ++i) {
+          x[static_cast<size_t>(free[i])] = at[i];
+          side[static_cast<size_t>(free[i])] = side_at(at[i]);
+        }
+        double e = 0.0;
+        const size_t c = judge.region(x, side, free, &e);
+        if (best.offer(c, e)) best_at = at;
+        for (size_t i = 0; i < free.size(); ++i) {
+          x[static_cast<size_t>(free[i])] = was[i];
+          side[static_cast<size_t>(free[i])] = side_was[i];
+        }
+      }
+    if (best_at.empty()) {
+      scale *= 0.5;
+      continue;
+    }
+    scale = std::min(1.0, 2.0 * scale);
+    for (size_t i = 0; i < free.size(); ++i) {
+      occupancy.move(was[i], best_at[i]);
+      x[static_cast<size_t>(free[i])] = best_at[i];
+      side[static_cast<size_t>(free[i])] = side_at(best_at[i]);
+    }
+    ++kept;
+  }
+  return kept;
+}
+
+// Joint moves, where single moves have stopped.
+size_t Untangler::joint_phase() {
+  size_t kept = 0;
+  for (const std::vector<int32_t>& cluster : tangled_clusters()) kept += move_cluster(cluster);
+  report.after = judge.count(x, side, &marked);
+  return kept;
+}
+
 }  // namespace
 
 UntangleInput::UntangleInput(const TriangleMesh& sides)
@@ -354,262 +671,13 @@ UntangleReport untangle(const UntangleInput& input, const std::vector<Triangles>
   UntangleReport report;
   const TriangleMesh& sides = input.mesh();
   if (levels.empty() || levels.back().empty() || sides.positions.empty() || sides.triangles.empty()) return report;
-  std::vector<Eigen::Vector3d>& x = *positions;
-  const size_t n = x.size();
-  const Judge judge(input.side_at(), levels, n);
-  const FoldCounter::Sides& side_at = judge.side_at();
-  std::vector<Eigen::Vector3d> side = side_at.of(x);
-  const Triangles& fine = levels.back();
-  const LevelAdjacency& fine_adj = judge.adjacency(levels.size() - 1);
-  auto neighbours = [&](int32_t v) {
-    std::vector<int32_t> out;
-    for (auto it = fine_adj.begin(v); it != fine_adj.end(v); ++it)
-      for (int32_t u : fine[static_cast<size_t>(*it)])
-        if (u != v) out.push_back(u);
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
-    return out;
-  };
-  auto movable = [&](int32_t v) { return !(static_cast<size_t>(v) < fixed.size() && fixed[static_cast<size_t>(v)]); };
-  // Base vertices, which may only hop onto input vertices of their own
-  // component (the component of the input vertex nearest them).
-  auto hops = [&](int32_t v) {
-    return options.input_vertex_hops > 0 && static_cast<size_t>(v) < fixed.size() &&
-           fixed[static_cast<size_t>(v)] == 2;
-  };
-  const std::vector<int32_t>& component = input.component();
-
-  Occupancy occupancy(x);
-  std::vector<std::vector<char>> marked;
-  report.before = judge.count(x, side, &marked);
-  report.after = report.before;
-  auto press = [&](const Eigen::Vector3d& q, Eigen::Vector3d* out) {  // q onto the input's tangent plane near it
-    const std::vector<uint32_t> near = side_at.nearest(q, 1);
-    if (near.empty()) return false;
-    const Eigen::Vector3d& normal = side_at.normal(near[0]);
-    *out = q - (q - sides.positions[near[0]]).dot(normal) * normal;
-    return true;
-  };
-  auto run_rounds = [&]() {
-  for (int round = 0; round < options.rounds; ++round) {
-    // The vertices of the tangled triangles of any level, and their
-    // neighbours on the finest.
-    std::vector<char> take(n, 0);
-    for (size_t k = 0; k < levels.size(); ++k)
-      for (size_t t = 0; t < levels[k].size(); ++t)
-        if (marked[k][t])
-          for (int32_t v : levels[k][t]) take[static_cast<size_t>(v)] = 1;
-    std::vector<int32_t> order;
-    for (size_t v = 0; v < n; ++v)
-      if (take[v]) {
-        if (movable(static_cast<int32_t>(v)) || hops(static_cast<int32_t>(v))) order.push_back(static_cast<int32_t>(v));
-        for (int32_t u : neighbours(static_cast<int32_t>(v)))
-          if (movable(u) || hops(u)) order.push_back(u);
-      }
-    std::sort(order.begin(), order.end());
-    order.erase(std::unique(order.begin(), order.end()), order.end());
-
-    size_t moved = 0;
-    for (int32_t v : order) {
-      const size_t vi = static_cast<size_t>(v);
-      double e_now = 0.0;
-      const size_t now = judge.around(x, side, v, &e_now);
-      if (now == 0) continue;
-      const std::vector<int32_t> ring = neighbours(v);
-      if (ring.empty()) continue;
-      Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-      for (int32_t u : ring) centroid += x[static_cast<size_t>(u)];
-      centroid /= static_cast<double>(ring.size());
-      const Eigen::Vector3d was = x[vi], side_was = side[vi];
-      std::vector<Eigen::Vector3d> candidates;
-      // Input vertices, each tried once: the searches around v and around its
-      // centroid overlap, and a repeat could not win (Choice::offer takes
-      // only a better one).
-      std::vector<uint32_t> inputs;
-      auto add_input = [&](uint32_t i) {
-        if (std::find(inputs.begin(), inputs.end(), i) != inputs.end()) return;
-        inputs.push_back(i);
-        candidates.push_back(sides.positions[i]);
-      };
-      if (hops(v)) {
-        const std::vector<uint32_t> here = side_at.nearest(was, 1);
-        if (here.empty()) continue;
-        for (const Eigen::Vector3d& around : {was, centroid})
-          for (uint32_t i : side_at.nearest(around, options.input_vertex_hops))
-            if (component[i] == component[here[0]]) add_input(i);
-      } else {
-        auto add_pressed = [&](const Eigen::Vector3d& q) {
-          Eigen::Vector3d pressed;
-          if (press(q, &pressed)) candidates.push_back(pressed);
-        };
-        for (double w : {1.0, 0.5, 0.25}) {
-          const Eigen::Vector3d q = was + w * (centroid - was);
-          candidates.push_back(q);
-          add_pressed(q);
-        }
-        for (uint32_t i : side_at.nearest(centroid, options.input_candidates)) add_input(i);
-        if (options.wide_candidates > 0)
-          for (const Eigen::Vector3d& around : {was, centroid})
-            for (uint32_t i : side_at.nearest(around, options.wide_candidates)) add_input(i);
-        for (int32_t u : ring)
-          for (double w : {0.5, 0.8}) candidates.push_back(was + w * (x[static_cast<size_t>(u)] - was));
-        // And, if there is one within half the ring's mean edge, a point where
-        // every triangle at v faces out (v's side taken as it is now): pressed
-        // onto the input's tangent plane first, then as found.
-        double reach = 0.0;
-        for (int32_t u : ring) reach += (x[static_cast<size_t>(u)] - was).norm();
-        reach *= 0.5 / static_cast<double>(ring.size());
-        Eigen::Vector3d deepest, nearest;
-        if (fold_free_point(levels, judge, x, side, v, reach, &deepest, &nearest))
-          for (const Eigen::Vector3d& q : {nearest, deepest}) {
-            add_pressed(q);
-            candidates.push_back(q);
-          }
-      }
-      Choice best{now, e_now};
-      Eigen::Vector3d best_at = was, best_side = side_was;
-      for (const Eigen::Vector3d& q : candidates) {
-        if (q != was && occupancy.taken(q)) continue;
-        x[vi] = q;
-        side[vi] = side_at(q);
-        double e = 0.0;
-        const size_t c = judge.around(x, side, v, &e);
-        if (best.offer(c, e)) {
-          best_at = q;
-          best_side = side[vi];
-        }
-      }
-      const bool better = best.count < now || best.energy < e_now;
-      occupancy.move(was, best_at);
-      x[vi] = best_at;
-      side[vi] = best_side;
-      moved += better;
-    }
-    report.moved += moved;
-    ++report.rounds;
-    report.after = judge.count(x, side, &marked);
-    if (moved == 0) break;
-  }
-  };
-
-  // Joint moves: the vertices of the tangled triangles, joined through them
-  // (any level) into clusters, each grown by its finest ring, move together
-  // where single moves have stopped.
-  auto joint_phase = [&]() {
-    std::vector<int32_t> parent(n);
-    for (size_t v = 0; v < n; ++v) parent[v] = static_cast<int32_t>(v);
-    auto find = [&](int32_t v) {
-      while (parent[static_cast<size_t>(v)] != v)
-        v = parent[static_cast<size_t>(v)] = parent[static_cast<size_t>(parent[static_cast<size_t>(v)])];
-      return v;
-    };
-    std::vector<char> tangled(n, 0);
-    for (size_t k = 0; k < levels.size(); ++k)
-      for (size_t t = 0; t < levels[k].size(); ++t)
-        if (marked[k][t]) {
-          const auto& tri = levels[k][t];
-          for (int32_t v : tri) tangled[static_cast<size_t>(v)] = 1;
-          const int32_t a = find(tri[0]);
-          for (int c = 1; c < 3; ++c) {
-            const int32_t b = find(tri[static_cast<size_t>(c)]);
-            if (a != b) parent[static_cast<size_t>(std::max(a, b))] = std::min(a, b);
-          }
-        }
-    std::vector<std::vector<int32_t>> clusters;
-    std::unordered_map<int32_t, size_t> cluster_of;
-    for (size_t v = 0; v < n; ++v)
-      if (tangled[v]) {
-        const auto [it, fresh] = cluster_of.emplace(find(static_cast<int32_t>(v)), clusters.size());
-        if (fresh) clusters.emplace_back();
-        clusters[it->second].push_back(static_cast<int32_t>(v));
-      }
-    size_t kept = 0;
-    for (const std::vector<int32_t>& cluster : clusters) {
-      std::vector<int32_t> free;
-      for (int32_t v : cluster) {
-        if (movable(v)) free.push_back(v);
-        for (int32_t u : neighbours(v))
-          if (movable(u)) free.push_back(u);
-      }
-      std::sort(free.begin(), free.end());
-      free.erase(std::unique(free.begin(), free.end()), free.end());
-      if (free.empty() || free.size() > options.joint_vertices) continue;
-      std::vector<double> reach(free.size(), 0.0);
-      for (size_t i = 0; i < free.size(); ++i) {
-        const std::vector<int32_t> ring = neighbours(free[i]);
-        for (int32_t u : ring) reach[i] += (x[static_cast<size_t>(u)] - x[static_cast<size_t>(free[i])]).norm();
-        reach[i] *= 0.5 / static_cast<double>(std::max<size_t>(ring.size(), 1));
-      }
-      // A trust region: the reach halves when a step is not kept (the
-      // linearization holds better for smaller moves) and doubles back
-      // when one is.
-      double scale = 1.0;
-      for (int step = 0; step < 12 && scale > 0.07; ++step) {
-        double e_now = 0.0;
-        const size_t now = judge.region(x, side, free, &e_now);
-        if (now == 0) break;
-        std::vector<Eigen::Vector3d> to;
-        std::vector<double> scaled = reach;
-        for (double& r : scaled) r *= scale;
-        if (!joint_moves(judge, x, side, free, scaled, &to)) break;
-        std::vector<Eigen::Vector3d> was(free.size()), side_was(free.size());
-        for (size_t i = 0; i < free.size(); ++i) {
-          was[i] = x[static_cast<size_t>(free[i])];
-          side_was[i] = side[static_cast<size_t>(free[i])];
-        }
-        Choice best{now, e_now, 0.99};  // kept if it leaves fewer, or as many a little less deep: the next step goes on
-        std::vector<Eigen::Vector3d> best_at;
-        // The moves whole and in part (the linearization holds for small
-        // ones), each as found and pressed onto the input's tangent plane.
-        std::vector<std::vector<Eigen::Vector3d>> tries;
-        for (double w : {1.0, 0.5, 0.25, 0.125}) {
-          tries.push_back(to);
-          for (size_t i = 0; i < free.size(); ++i) tries.back()[i] = was[i] + w * (to[i] - was[i]);
-        }
-        for (const auto& found : tries)
-          for (bool pressed : {true, false}) {
-            std::vector<Eigen::Vector3d> at = found;
-            bool ok = true;
-            for (size_t i = 0; i < free.size() && ok; ++i) {
-              if (pressed) ok = press(found[i], &at[i]);
-              ok = ok && (at[i] == was[i] || !occupancy.taken(at[i]));
-            }
-            if (!ok) continue;
-            for (size_t i = 0; i < free.size(); ++i) {
-              x[static_cast<size_t>(free[i])] = at[i];
-              side[static_cast<size_t>(free[i])] = side_at(at[i]);
-            }
-            double e = 0.0;
-            const size_t c = judge.region(x, side, free, &e);
-            if (best.offer(c, e)) best_at = at;
-            for (size_t i = 0; i < free.size(); ++i) {
-              x[static_cast<size_t>(free[i])] = was[i];
-              side[static_cast<size_t>(free[i])] = side_was[i];
-            }
-          }
-        if (best_at.empty()) {
-          scale *= 0.5;
-          continue;
-        }
-        scale = std::min(1.0, 2.0 * scale);
-        for (size_t i = 0; i < free.size(); ++i) {
-          occupancy.move(was[i], best_at[i]);
-          x[static_cast<size_t>(free[i])] = best_at[i];
-          side[static_cast<size_t>(free[i])] = side_at(best_at[i]);
-        }
-        ++kept;
-      }
-    }
-    report.after = judge.count(x, side, &marked);
-    return kept;
-  };
-
-  run_rounds();
+  Untangler untangler(input, levels, fixed, positions, options, &report);
+  untangler.run_rounds();
   for (int pass = 0; pass < 2; ++pass) {
-    const size_t kept = joint_phase();
+    const size_t kept = untangler.joint_phase();
     report.joint_moved += kept;
     if (kept == 0) break;
-    run_rounds();
+    untangler.run_rounds();
   }
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;
@@ -631,7 +699,7 @@ std::vector<TangledPlace> tangled_places(const UntangleInput& sides, const std::
                               x[static_cast<size_t>(level[t][2])]) / 3.0);
     };
     for (size_t t = 0; t < level.size(); ++t)
-      if (!(facing(x, side, level[t]) > kFoldedFacing)) tangles.push_back({centroid(t), finest, true});
+      if (folded(x, side, level[t])) tangles.push_back({centroid(t), finest, true});
     const std::vector<std::array<int32_t, 3>> across = triangles_across(level);
     for (size_t t = 0; t < level.size(); ++t)
       for (int32_t u : across[t])  // each pair once, from its lower triangle (as Judge::count)

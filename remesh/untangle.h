@@ -6,7 +6,7 @@
 // input vertices, and judge a corner by the normal its site was given; the
 // fit (remesh/fit.h) only refuses moves that would fold more. What both
 // leave is mostly where the input's sheets come closer than a finest edge
-// (beast's lips and claws, ogre's ears), and a few spots of the smooth scans.
+// (lips, claws, ears), and a few spots of smooth scans.
 // There a vertex placed anywhere near, not only on an input vertex, often
 // unfolds its triangles.
 #pragma once
@@ -19,6 +19,7 @@
 
 #include "format/mesh.h"
 #include "remesh/fit.h"
+#include "remesh/folds.h"
 #include "remesh/levels_to_move.h"
 
 namespace srcodec {

@@ -38,9 +38,11 @@ std::string ScratchDir::write(const std::string& name, const std::string& conten
   return file(name);
 }
 
-CommandResult run_srcodec(const std::string& args) {
+CommandResult run_srcodec(const std::string& args) { return run_binary(SRCODEC_BINARY, args); }
+
+CommandResult run_binary(const std::string& binary, const std::string& args) {
   ScratchDir dir;
-  const std::string command = std::string(SRCODEC_BINARY) + " " + args + " >" + dir.file("out") + " 2>" +
+  const std::string command = binary + " " + args + " >" + dir.file("out") + " 2>" +
                               dir.file("err") + " </dev/null";
   const int status = std::system(command.c_str());
   CommandResult r;

@@ -31,7 +31,9 @@ struct CommandResult {
   int exit_code = -1;
   std::string out, err;
 };
-// Runs the srcodec binary with `args` (shell-quoted by the caller).
+// Runs `binary` with `args` (shell-quoted by the caller).
+CommandResult run_binary(const std::string& binary, const std::string& args);
+// Runs the srcodec binary with `args`.
 CommandResult run_srcodec(const std::string& args);
 std::string shell_quote(const std::string& s);  // 's' for paths without quotes
 // A number field of a flat JSON line, NaN if absent.

@@ -9,7 +9,8 @@ defaults, which fit the finest level to the input surface. Writes a CSV and a
 plot.
 
 usage: /usr/bin/python3 tools/remesh_experiments.py [--quick] [--out docs/remesh_experiments]
-  (needs build/tools/srcodec, or the binary named by $SRCODEC; python3-matplotlib; the corpus in
+  (needs build/tools/remesh_experiment, `srcodec remesh` with the experiments' switches, or the binary
+  named by $REMESH_EXPERIMENT; python3-matplotlib; the corpus in
   ../shared/data/meshes)
 """
 import argparse
@@ -21,7 +22,7 @@ import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-SRCODEC = os.environ.get("SRCODEC", os.path.join(ROOT, "build", "tools", "srcodec"))
+REMESH_EXPERIMENT = os.environ.get("REMESH_EXPERIMENT", os.path.join(ROOT, "build", "tools", "remesh_experiment"))
 CORPUS = os.path.join(ROOT, "..", "shared", "data", "meshes")
 
 # (mesh, levels, extra options) runs; thresholds are in vertices of the
@@ -48,7 +49,7 @@ PAPER = ["--no-fit-surface"]
 
 def run(mesh, levels, extra):
     with tempfile.TemporaryDirectory() as tmp:
-        cmd = [SRCODEC, "remesh", os.path.join(CORPUS, mesh), "-o", os.path.join(tmp, "out.obj"), "--levels",
+        cmd = [REMESH_EXPERIMENT, "remesh", os.path.join(CORPUS, mesh), "-o", os.path.join(tmp, "out.obj"), "--levels",
                str(levels), "--json", "--quiet"] + extra
         print(" ".join(cmd[1:]), file=sys.stderr, flush=True)
         out = subprocess.run(cmd, check=True, capture_output=True, text=True).stdout

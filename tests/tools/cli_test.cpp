@@ -13,6 +13,11 @@ using test::run_srcodec;
 using test::json_number;
 const auto q = test::shell_quote;
 
+// The benchmark program with the switches for experiments (tools/bench/remesh_experiment.cpp).
+test::CommandResult run_experiment(const std::string& args) {
+  return test::run_binary(SRCODEC_EXPERIMENT_BINARY, args);
+}
+
 TEST(Cli, InfoJsonOnSample) {
   auto r = run_srcodec("info --json " + q(test::source_path("data/spot.obj")));
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -156,14 +161,14 @@ TEST(Cli, RemeshTextReportNamesLeftoverFolds) {
 
   // Without the untangling, the refinement's own count (3 levels leave some).
   const std::string plain = " --no-untangle --quiet --levels 3 --scheme linear --samples 20000 " + in + " -o ";
-  json = run_srcodec("remesh --json" + plain + q(dir.file("c.obj")));
+  json = run_experiment("remesh --json" + plain + q(dir.file("c.obj")));
   ASSERT_EQ(json.exit_code, 0) << json.err;
   const std::string last = json.out.substr(json.out.rfind("\"level\": 3"));
   const auto folded = static_cast<size_t>(json_number(last, "folded_triangles"));
   const auto coarse = static_cast<size_t>(json_number(last, "coarse_folded_triangles"));
   const auto pleats = static_cast<size_t>(json_number(last, "pleats"));
   ASSERT_GT(folded + coarse + pleats, 0u) << "this setting no longer folds: pick another for the test";
-  text = run_srcodec("remesh" + plain + q(dir.file("d.obj")));
+  text = run_experiment("remesh" + plain + q(dir.file("d.obj")));
   ASSERT_EQ(text.exit_code, 0) << text.err;
   const std::string refined = "folds: " + std::to_string(folded) + " triangle(s) of level 3 and " +
                               std::to_string(coarse) + " of coarser levels face against the input; " +
@@ -176,9 +181,10 @@ TEST(Cli, RemeshTextReportNamesLeftoverFolds) {
   EXPECT_EQ(clean.out.find("  at ("), std::string::npos) << clean.out;
 }
 
-// The unsplitting (remesh/unsplit_tangles.h) is on for remesh and off for
-// encode, each with a flag for the other way.
-TEST(Cli, UnsplittingIsOnForRemeshAndOffForEncode) {
+// The unsplitting (remesh/unsplit_tangles.h) is off for remesh and encode
+// alike, and neither has a switch for it; the experiments' program turns it
+// on.
+TEST(Cli, UnsplittingIsOffForRemeshAndEncode) {
   test::ScratchDir dir;
   const std::string in = q(test::source_path("data/bunny_npm.obj"));
   const std::string args = " --json --quiet --levels 2 --samples 20000 " + in + " -o ";
@@ -186,20 +192,30 @@ TEST(Cli, UnsplittingIsOnForRemeshAndOffForEncode) {
   auto off = [](const test::CommandResult& r) { return r.out.find("\"unsplit_tangles\": false") != std::string::npos; };
   auto r = run_srcodec("remesh" + args + q(dir.file("a.obj")));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_TRUE(on(r)) << r.out;
-  r = run_srcodec("remesh --keep-tangled-splits" + args + q(dir.file("b.obj")));
-  ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(off(r)) << r.out;
   EXPECT_EQ(json_number(r.out, "unsplit_passes"), 0.0);
   r = run_srcodec("encode" + args + q(dir.file("c.srm")));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(off(r)) << r.out;
   EXPECT_EQ(json_number(r.out, "unsplit_splits"), 0.0);
-  r = run_srcodec("encode --unsplit-tangles" + args + q(dir.file("d.srm")));
+  for (const char* command : {"remesh", "encode"})
+    for (const char* flag : {"--unsplit-tangles", "--keep-tangled-splits"})
+      EXPECT_NE(run_srcodec(std::string(command) + " " + flag + args + q(dir.file("e.out"))).exit_code, 0)
+          << command << " " << flag;
+  r = run_experiment("remesh --unsplit-tangles" + args + q(dir.file("f.obj")));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(on(r)) << r.out;
-  EXPECT_NE(run_srcodec("encode --keep-tangled-splits" + args + q(dir.file("e.srm"))).exit_code, 0);
-  EXPECT_NE(run_srcodec("remesh --unsplit-tangles" + args + q(dir.file("f.obj"))).exit_code, 0);
+}
+
+// The switches for experiments are not the user's.
+TEST(Cli, ExperimentSwitchesAreNotInTheUsersRemesh) {
+  test::ScratchDir dir;
+  const std::string in = q(test::source_path("data/bunny_npm.obj"));
+  for (const char* flag : {"--tolerance 60", "--no-fit-surface", "--no-untangle", "--no-relax-slivers",
+                           "--follow-detours"})
+    EXPECT_NE(run_srcodec(std::string("remesh --quiet ") + flag + " " + in + " -o " + q(dir.file("x.obj"))).exit_code,
+              0)
+        << flag;
 }
 
 TEST(Cli, SubdivideLinearSplitsEveryTriangleInFour) {
@@ -235,7 +251,7 @@ TEST(Cli, RemeshBadRequestsSayWhatWouldWork) {
   auto both = run_srcodec("remesh --quiet --uniform --threshold 3 " + in + " -o " + q(out));
   EXPECT_NE(both.exit_code, 0);
   for (const char* tolerance : {"0", "-5", "nan", "400", "x"}) {
-    auto bad = run_srcodec("remesh --quiet --tolerance " + std::string(tolerance) + " " + in + " -o " + q(out));
+    auto bad = run_experiment("remesh --quiet --tolerance " + std::string(tolerance) + " " + in + " -o " + q(out));
     EXPECT_NE(bad.exit_code, 0) << "--tolerance " << tolerance;
     EXPECT_NE(bad.err.find("--tolerance"), std::string::npos) << bad.err;
   }

@@ -18,7 +18,7 @@ import shlex
 import sys
 import tempfile
 
-from srcodec_cli import CORPUS, Failed, corpus_meshes, run_json
+from srcodec_cli import CORPUS, REMESH_EXPERIMENT, Failed, corpus_meshes, run_json
 
 
 def shape(info):
@@ -36,7 +36,7 @@ def main():
         for name in meshes:
             mesh, out = os.path.join(CORPUS, name), os.path.join(tmp, "out.ply")
             try:
-                d = run_json(["remesh", mesh, "-o", out, "--json", "--quiet"] + extra)
+                d = run_json(["remesh", mesh, "-o", out, "--json", "--quiet"] + extra, REMESH_EXPERIMENT)
                 src, got = run_json(["info", mesh, "--json"]), run_json(["info", out, "--json"])
             except Failed as e:
                 print(f"| {name} | error: {e} ||||||||||", flush=True)

@@ -4,8 +4,7 @@
 A remesh with no folded triangle can decode to a mesh with many: the coded
 coefficients move every vertex a little, and a triangle nearly edge-on to the
 input turns over. For MESH this script writes, in a scratch folder:
-  - the remesh `srcodec encode` codes (`srcodec remesh --keep-tangled-splits`,
-    or without that option with --unsplit-tangles),
+  - the remesh `srcodec encode` codes (`srcodec remesh` at the same options),
   - `srcodec encode` at its default rate and at the whole stream, decoded,
   - Draco's decoded mesh at the quantization whose PSNR is nearest the default
     rate's and at one bit more,
@@ -13,7 +12,7 @@ and recounts each as tools/bench/fold_recount.py does (every corner judged by
 the normal of the input vertex nearest it, over the input oversampled as the
 remesher oversampled it): folded triangles and their share of the area.
 
-usage: /usr/bin/python3 tools/bench/decoded_folds.py MESH [--unsplit-tangles]
+usage: /usr/bin/python3 tools/bench/decoded_folds.py MESH
   MESH: any mesh srcodec reads (OBJ, PLY, OFF, STL)
 """
 import os
@@ -28,24 +27,21 @@ from srcodec_cli import draco_point, or_exit, run, run_json
 
 
 def main():
-    args = [a for a in sys.argv[1:] if a != "--unsplit-tangles"]
-    unsplit = len(args) + 1 == len(sys.argv[1:])
+    args = sys.argv[1:]
     if len(args) != 1:
         sys.exit(__doc__)
     mesh = args[0]
     with tempfile.TemporaryDirectory() as tmp:
         at = lambda name: os.path.join(tmp, name)
         rows = []  # (what, bytes, psnr, path)
-        remesh = run_json(["remesh", mesh, "-o", at("remesh.obj"), "--json", "-q"] +
-                          ([] if unsplit else ["--keep-tangled-splits"]))
+        remesh = run_json(["remesh", mesh, "-o", at("remesh.obj"), "--json", "-q"])
         rows.append(("remesh (what encode codes)", "", remesh["levels"][-1]["psnr"], at("remesh.obj")))
         run(["subdivide", mesh, "-o", at("over.obj"), "--scheme", "butterfly",
              "--steps", str(remesh["oversample_steps"])])
-        extra = ["--unsplit-tangles"] if unsplit else []
         target = None
         for what, rate in (("srcodec, default rate", []), ("srcodec, whole stream", ["--bytes", "1000000000"])):
             srm = at("coded.srm")
-            coded = run_json(["encode", mesh, "-o", srm, "--json", "-q"] + rate + extra)
+            coded = run_json(["encode", mesh, "-o", srm, "--json", "-q"] + rate)
             decoded = at(what.replace(", ", "_").replace(" ", "_") + ".obj")
             run(["decode", srm, "-o", decoded])
             rows.append((what, coded["bytes"], coded["psnr"], decoded))
@@ -62,8 +58,7 @@ def main():
 
         pi, ti = load_obj(at("over.obj"))
         normals, tree = unit_vertex_normals(pi, ti), cKDTree(pi)
-        print(f"{os.path.basename(mesh)}, oversampled {remesh['oversample_steps']} time(s) for the recount"
-              + (", encode with --unsplit-tangles" if unsplit else ""))
+        print(f"{os.path.basename(mesh)}, oversampled {remesh['oversample_steps']} time(s) for the recount")
         print("| mesh | bytes | PSNR dB | triangles | folded | folded area |")
         print("|---|---:|---:|---:|---:|---:|")
         for what, size, q, path in rows:

@@ -18,7 +18,7 @@ import subprocess
 import sys
 import tempfile
 
-from srcodec_cli import CORPUS, SRCODEC, failure
+from srcodec_cli import CORPUS, REMESH_EXPERIMENT, failure
 
 MESHES = ["stanford-bunny.obj", "armadillo.obj", "nefertiti.obj", "igea.ply"]
 
@@ -38,8 +38,9 @@ def run(mesh, extra):
     with tempfile.TemporaryDirectory() as tmp:
         args = ["remesh", os.path.join(CORPUS, mesh), "-o", os.path.join(tmp, "out.ply"), "--json", "--quiet"] + extra
         timing = os.path.join(tmp, "time.txt")  # kept apart from srcodec's stderr, whose last line says what failed
-        print(" ".join([SRCODEC] + args), file=sys.stderr, flush=True)
-        p = subprocess.run(["/usr/bin/time", "-v", "-o", timing, SRCODEC] + args, capture_output=True, text=True)
+        print(" ".join([REMESH_EXPERIMENT] + args), file=sys.stderr, flush=True)
+        p = subprocess.run(["/usr/bin/time", "-v", "-o", timing, REMESH_EXPERIMENT] + args, capture_output=True,
+                           text=True)
         if p.returncode != 0:
             return None, str(failure(args, p.returncode, p.stderr))
         with open(timing) as f:

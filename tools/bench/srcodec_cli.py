@@ -2,7 +2,10 @@
 corpus_remesh.py, decoded_folds.py, default_rate.py, remesh_quality.py): where the binary and the corpus
 are, one call that runs a command and says what failed, and the measurements they share.
 
-SRCODEC in the environment names another binary (default: build/tools/srcodec of this checkout)."""
+SRCODEC in the environment names another binary (default: build/tools/srcodec of this checkout);
+REMESH_EXPERIMENT another remesh_experiment (default: build/tools/remesh_experiment), the program with
+the switches for experiments (--tolerance, --no-fit-surface, --no-untangle, --no-relax-slivers,
+--unsplit-tangles) that the user's `srcodec remesh` does not have."""
 import json
 import os
 import subprocess
@@ -10,6 +13,7 @@ import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SRCODEC = os.environ.get("SRCODEC", os.path.join(ROOT, "build", "tools", "srcodec"))
+REMESH_EXPERIMENT = os.environ.get("REMESH_EXPERIMENT", os.path.join(ROOT, "build", "tools", "remesh_experiment"))
 CORPUS = os.path.join(ROOT, "..", "shared", "data", "meshes")
 MESH_SUFFIXES = (".obj", ".ply", ".off", ".stl")  # what srcodec reads
 
@@ -24,17 +28,18 @@ def failure(args, returncode, stderr):
     return Failed(f"srcodec {' '.join(args)}: {last}")
 
 
-def run(args):
-    """Runs `srcodec ARGS`; returns what it printed on stdout. Raises Failed when it exits non-zero."""
-    p = subprocess.run([SRCODEC] + args, capture_output=True, text=True)
+def run(args, binary=SRCODEC):
+    """Runs `srcodec ARGS` (or `binary`, e.g. REMESH_EXPERIMENT); returns what it printed on stdout. Raises
+    Failed when it exits non-zero."""
+    p = subprocess.run([binary] + args, capture_output=True, text=True)
     if p.returncode != 0:
         raise failure(args, p.returncode, p.stderr)
     return p.stdout
 
 
-def run_json(args):
+def run_json(args, binary=SRCODEC):
     """run() of a command given --json: its output read as JSON."""
-    return json.loads(run(args))
+    return json.loads(run(args, binary))
 
 
 def corpus_meshes():

@@ -12,6 +12,7 @@
 #include "tools/srcodec/commands.h"
 #include "tools/srcodec/json_writer.h"
 #include "tools/srcodec/remesh_flags.h"
+#include "tools/srcodec/remesh_progress.h"
 
 namespace srcodec {
 namespace {
@@ -118,7 +119,8 @@ Status run_encode(const EncodeCliOptions& o) {
   options.rate = rate_of(o);
   options.samples = o.samples;
   if (!o.quiet) {
-    options.remesh.progress = [](const std::string& line) { std::cerr << "remesh: " << line << std::endl; };
+    options.remesh.progress =
+        remesh_progress_lines([](const std::string& line) { std::cerr << "remesh: " << line << std::endl; });
     options.progress = [rate = options.rate](const EncodeProgress& p) {
       const std::string line = rate_search_line(rate);
       if (std::string(p.stage) == "code" && !line.empty()) std::cerr << "encode: " << line << std::endl;
@@ -142,7 +144,7 @@ Command add_encode_command(CommandLine& cli) {
       "stream's rate-distortion curve (README: The default rate)");
   cmd.positional("mesh", o->input, "Input mesh (OBJ, PLY, OFF, STL)");
   cmd.option("-o,--output", o->output, "The .srm file to write").required();
-  add_remesh_flags(cmd, o->remesh, /*for_coding=*/true);
+  add_remesh_flags(cmd, o->remesh);
   auto& bpv = cmd.option("--bpv", o->bpv, "Rate: bits per input vertex").finite().positive();
   auto& bytes = cmd.option("--bytes", o->bytes, "Rate: file size in bytes").positive();
   auto& psnr = cmd.option("--psnr", o->psnr, "Rate: the smallest file reaching this PSNR (dB) against the input")

@@ -28,6 +28,7 @@
 #include "tools/srcodec/commands.h"
 #include "tools/srcodec/json_writer.h"
 #include "tools/srcodec/remesh_flags.h"
+#include "tools/srcodec/remesh_progress.h"
 
 #ifndef SRCODEC_SOURCE_DIR
 #define SRCODEC_SOURCE_DIR "."
@@ -166,7 +167,8 @@ StatusOr<DecodedSrm> timed_decode(const std::vector<uint8_t>& file, bool prefix_
 
 StatusOr<std::vector<RdRow>> srcodec_rows(const RdRun& run, const RdCliOptions& o) {
   SRCODEC_ASSIGN_OR_RETURN(RemeshOptions remesh_options, to_remesh_options(o.remesh));
-  if (!o.quiet) remesh_options.progress = [&run](const std::string& line) { run.say("remesh: " + line); };
+  if (!o.quiet)
+    remesh_options.progress = remesh_progress_lines([&run](const std::string& line) { run.say("remesh: " + line); });
   run.say("remeshing and encoding the full stream");
   const auto start = std::chrono::steady_clock::now();
   SRCODEC_ASSIGN_OR_RETURN(SemiRegularMesh srm, remesh(run.input(), remesh_options));
@@ -480,7 +482,7 @@ Command add_rd_command(CommandLine& cli) {
   Subcommand& cmd = cli.add_command("rd", "Rate-distortion curves of srcodec and Draco on one mesh, with BD-rate");
   cmd.positional("mesh", o->input, "Input mesh (OBJ, PLY, OFF, STL)");
   cmd.option("-o,--output", o->out_dir, "Folder for rd.csv, rd.png and summary.json (created if missing)").required();
-  add_remesh_flags(cmd, o->remesh, /*for_coding=*/true);
+  add_remesh_flags(cmd, o->remesh);
   cmd.option("--points", o->points, "srcodec rates, log-spaced from the base mesh alone to the whole stream")
       .range(2, 100)
       .show_default();

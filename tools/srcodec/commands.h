@@ -19,7 +19,9 @@ struct Command {
 Command add_info_command(CommandLine& cli);
 Command add_compare_command(CommandLine& cli);
 Command add_draco_command(CommandLine& cli);
-Command add_remesh_command(CommandLine& cli);
+// With `experiment`, also the switches that exist for experiments
+// (add_experiment_flags): the benchmark program tools/bench/remesh_experiment.
+Command add_remesh_command(CommandLine& cli, bool experiment = false);
 Command add_subdivide_command(CommandLine& cli);
 Command add_encode_command(CommandLine& cli);
 Command add_decode_command(CommandLine& cli);

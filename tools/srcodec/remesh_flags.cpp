@@ -4,7 +4,7 @@
 
 namespace srcodec {
 
-void add_remesh_flags(Subcommand& cmd, RemeshFlags& f, bool for_coding) {
+void add_remesh_flags(Subcommand& cmd, RemeshFlags& f) {
   f.levels_option = &cmd.option("--levels", f.levels,
                                 "Refinement levels above the base mesh (without this option: fewer for "
                                 "inputs too small for 4, none below 100 vertices)")
@@ -14,18 +14,12 @@ void add_remesh_flags(Subcommand& cmd, RemeshFlags& f, bool for_coding) {
              "Base mesh vertices (default: from the input size and levels, 100..4000; up to a quarter more "
              "where cells wrap around thin parts; see docs/remesh_design.md)");
   auto& threshold = cmd.option("--threshold", f.threshold,
-                               "Adaptive: keep a triangle's split only when each corner's Voronoi cell holds "
-                               "more than this many (oversampled) input vertices (Eq. 5); judged on a uniform "
-                               "refinement where the input is dense enough for one, else level by level")
+                               "The paper's adaptivity (Eq. 5): keep a triangle's split only when each corner's "
+                               "Voronoi cell holds more than this many (oversampled) input vertices; judged on a "
+                               "uniform refinement where the input is dense enough for one, else level by level")
                         .finite()
                         .non_negative();
   cmd.flag("--uniform", f.uniform, "Split every triangle (the default without --threshold)").excludes(threshold);
-  auto& tolerance = cmd.option("--tolerance", f.tolerance_db,
-                               "Adaptive by geometry: after the last level, undo a triangle's split where the "
-                               "input's RMS distance to it is within this PSNR in dB (bounding-box diagonal x "
-                               "10^(-dB/20)); with --uniform or --threshold")
-                        .finite()
-                        .range(1.0, 300.0);
   auto& max_loss =
       cmd.option("--max-loss", f.max_loss_db,
                  "Adaptive by measured error: refine uniformly and fit, then undo the last level's splits that "
@@ -34,8 +28,8 @@ void add_remesh_flags(Subcommand& cmd, RemeshFlags& f, bool for_coding) {
                  "more splits undone while the result stays within it; e.g. 0.5")
           .finite()
           .range(0.01, 60.0)
-          .excludes(threshold)
-          .excludes(tolerance);
+          .excludes(threshold);
+  f.max_loss_option = &max_loss;
   cmd.option("--deepen", f.deepen_fraction,
              "With --max-loss: first split once more this fraction of the finest level's triangles, those "
              "holding the most error, then judge the loss against the levels asked and undo the splits of "
@@ -44,43 +38,29 @@ void add_remesh_flags(Subcommand& cmd, RemeshFlags& f, bool for_coding) {
       .finite()
       .range(0.0, 1.0)
       .needs(max_loss);
-  cmd.negated_flag("--no-fit-surface", f.fit_surface,
-                   "Leave every vertex where the remeshing put it (on the input's vertices, as in the paper): by "
-                   "default the vertices above the base mesh then move along their normals to centre the finest "
-                   "level's triangles on the input surface (boundary vertices stay)");
-  cmd.negated_flag("--no-untangle", f.untangle,
-                   "After the fit, leave the vertices of triangles still folded or in a pleat where they are: by "
-                   "default each moves to the nearby place that leaves fewest of them around it, on every level");
-  if (for_coding) {
-    // Off for coding: an adaptive last level costs its refinement flags in
-    // every prefix of the file (388 bytes on beast) and the top of the
-    // curve (docs/remesh_design.md, "Unsplitting").
-    f.unsplit_tangles = false;
-    cmd.flag("--unsplit-tangles", f.unsplit_tangles,
-             "After the untangling, where triangles stay folded or in a pleat, leave the level below the "
-             "finest whole around one of their corners and untangle again, while that leaves fewer such "
-             "triangles (as remesh does by default; costs bytes: see docs/remesh_design.md)");
-  } else {
-    cmd.negated_flag("--keep-tangled-splits", f.unsplit_tangles,
-                     "After the untangling, keep every split of the level below the finest: by default, where "
-                     "triangles stay folded or in a pleat, that level's triangles around one of their corners are "
-                     "left whole (where their children do not reach out more than twice their edges) and the "
-                     "untangling runs again, while that leaves fewer such triangles");
-  }
-  cmd.flag("--follow-detours", f.follow_detours,
-           "Where the input between an edge's ends runs far off the edge (a pocket, a crease, a gap "
-           "narrower than an edge: its path along the input more than 1.6 times the edge), put the edge's "
-           "new vertex in the middle of that path and keep Lloyd from making such edges, instead of "
-           "bridging the gap; helps meshes with narrow gaps (the bunny at 5 levels), costs meshes made of "
-           "thin flaps (beast)");
-  cmd.negated_flag("--no-relax-slivers", f.relax_slivers,
-                   "Leave the finest level's slivers as they are: by default, last, each vertex of the finest level "
-                   "alone at a triangle of quality below 0.5 moves along its tangent plane toward its neighbours' "
-                   "mean where that makes the triangles around it rounder and folds none (fewer triangles turn "
-                   "over after coding; off with --no-fit-surface)");
   cmd.option("--oversample", f.oversample, "Subdivision steps before remeshing: auto, 0, 1, 2 or 3").show_default();
   cmd.option("--scheme", f.scheme, "Oversampling scheme: butterfly, loop, or linear (keeps the input's facets)")
       .show_default();
+}
+
+void add_experiment_flags(Subcommand& cmd, RemeshFlags& f) {
+  auto& tolerance = cmd.option("--tolerance", f.tolerance_db,
+                               "Adaptive by geometry (ours): after the last level, undo a triangle's split where "
+                               "the input's RMS distance to it is within this PSNR in dB (bounding-box diagonal x "
+                               "10^(-dB/20)); with --uniform or --threshold")
+                        .finite()
+                        .range(1.0, 300.0);
+  if (f.max_loss_option) tolerance.excludes(*f.max_loss_option);
+  cmd.negated_flag("--no-fit-surface", f.fit_surface,
+                   "Leave every vertex where the paper's method put it (on the input's vertices): no fit to the "
+                   "input surface, no untangling, no sliver relaxation");
+  cmd.negated_flag("--no-untangle", f.untangle,
+                   "After the fit, leave the vertices of triangles still folded or in a pleat where they are");
+  cmd.negated_flag("--no-relax-slivers", f.relax_slivers, "Leave the finest level's slivers as they are");
+  cmd.flag("--unsplit-tangles", f.unsplit_tangles,
+           "After the untangling, where triangles stay folded or in a pleat, leave the level below the finest "
+           "whole around one of their corners and untangle again, while that leaves fewer such triangles "
+           "(costs bytes when coded: see docs/remesh_design.md, \"Unsplitting\")");
 }
 
 StatusOr<RemeshOptions> to_remesh_options(const RemeshFlags& o) {
@@ -101,7 +81,6 @@ StatusOr<RemeshOptions> to_remesh_options(const RemeshFlags& o) {
   r.fit_surface = o.fit_surface;
   r.untangle = o.untangle;
   r.unsplit_tangles = o.unsplit_tangles;
-  r.follow_detours = o.follow_detours;
   r.relax_slivers = o.relax_slivers;
   if (o.oversample == "auto") {
     r.oversample = -1;

@@ -20,21 +20,23 @@ struct RemeshFlags {
   double deepen_fraction = 0.0;
   bool fit_surface = true;
   bool untangle = true;
-  bool unsplit_tangles = true;
-  bool follow_detours = false;
+  bool unsplit_tangles = false;
   bool relax_slivers = true;
   // Set by add_remesh_flags: without --levels, `levels` is fitted to small
-  // inputs (RemeshOptions::fit_levels).
+  // inputs (RemeshOptions::fit_levels); --max-loss, which --tolerance
+  // excludes.
   const Option* levels_option = nullptr;
+  Option* max_loss_option = nullptr;
 };
 
-// Adds --levels, --base-vertices, --threshold, --uniform, --tolerance, --max-loss, --deepen, --no-fit-surface,
-// --no-untangle, --keep-tangled-splits (or --unsplit-tangles), --follow-detours, --no-relax-slivers,
-// --oversample, --scheme.
-// With `for_coding` (encode, rd) the unsplitting is off unless
-// --unsplit-tangles asks for it; remesh has it on, --keep-tangled-splits
-// turns it off.
-void add_remesh_flags(Subcommand& cmd, RemeshFlags& flags, bool for_coding = false);
+// Adds the user's remesh options, shared by remesh, encode and rd: --levels,
+// --base-vertices, --threshold (the paper's Eq. 5), --uniform, --max-loss,
+// --deepen, --oversample, --scheme.
+void add_remesh_flags(Subcommand& cmd, RemeshFlags& flags);
+// Adds the switches that exist for experiments (tools/bench/remesh_experiment):
+// --tolerance, --no-fit-surface, --no-untangle, --no-relax-slivers,
+// --unsplit-tangles. After add_remesh_flags.
+void add_experiment_flags(Subcommand& cmd, RemeshFlags& flags);
 StatusOr<RemeshOptions> to_remesh_options(const RemeshFlags& flags);
 
 }  // namespace srcodec

@@ -1,0 +1,17 @@
+// The progress lines of `remesh`, `encode` and `rd`: the text of each step
+// remesh/ reports (remesh/progress.h).
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "remesh/progress.h"
+
+namespace srcodec {
+
+// One line, without a prefix or newline.
+std::string remesh_progress_line(const RemeshProgress& p);
+// A callback for RemeshOptions::progress that hands each line to `say`.
+RemeshProgressCallback remesh_progress_lines(std::function<void(const std::string&)> say);
+
+}  // namespace srcodec
