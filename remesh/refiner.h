@@ -2,8 +2,8 @@
 // remesh/: refine() in remesh/refine.h is the public face). The paper's
 // refinement (refine.cpp, lloyd_relaxation.cpp, new_vertices.cpp) and our
 // repairs of the folds it leaves (fold_repairs.cpp, patch_reparam.cpp,
-// spike_mending.cpp) work on one hierarchy and one set of
-// sites, so they are one class; each file defines its part.
+// spike_mending.cpp) work on one hierarchy and one set of sites, so they are
+// one class; each file defines its part.
 #pragma once
 
 #include <tbb/blocked_range.h>
@@ -30,7 +30,6 @@
 #include "remesh/refine.h"
 
 namespace srcodec {
-
 
 inline double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -39,7 +39,9 @@ void add_remesh_flags(Subcommand& cmd, RemeshFlags& f) {
       .range(0.0, 1.0)
       .needs(max_loss);
   cmd.option("--oversample", f.oversample, "Subdivision steps before remeshing: auto, 0, 1, 2 or 3").show_default();
-  cmd.option("--scheme", f.scheme, "Oversampling scheme: butterfly, loop, or linear (keeps the input's facets)")
+  cmd.option("--scheme", f.scheme,
+             "Oversampling scheme: butterfly (the paper's), loop (the paper's comparison, its Fig. 6), or linear "
+             "(ours: keeps the input's facets)")
       .show_default();
 }
 
