@@ -7,10 +7,10 @@
 #include <memory>
 #include <string>
 
+#include "codec/rate_control.h"
 #include "codec/srm_codec.h"
 #include "format/file_io.h"
 #include "format/mesh_files/mesh_io.h"
-#include "codec/rate_control.h"
 #include "tools/srcodec/commands.h"
 #include "tools/srcodec/json_writer.h"
 #include "tools/srcodec/remesh_flags.h"
