@@ -87,5 +87,28 @@ TEST(RateControl, KneeOfAStreamWithNoLevelsIsTheWholeStream) {
   EXPECT_FALSE(knee_of_stream(cutter, 0).ok()) << "no input vertices: an error, not a division by zero";
 }
 
+// segment_bytes_within (truncate_srm_to_size) keeps the most segment bytes
+// whose file fits, and refuses a budget below the smallest file.
+TEST(RateControl, SegmentBytesWithinIsTheMostThatFits) {
+  const TriangleMesh sphere = test::icosphere(3, 1.0);
+  RemeshOptions options;
+  options.levels = 1;
+  const std::vector<uint8_t> stream = whole_stream(sphere, options);
+  ASSERT_FALSE(stream.empty());
+  const StreamCutter cutter(sphere, stream);
+  ASSERT_GT(cutter.segment_bytes(), 0u);
+  const uint64_t smallest = cutter.cut(0)->size();
+  for (uint64_t budget : {smallest, smallest + 7, (smallest + stream.size()) / 2, uint64_t{stream.size()}}) {
+    const StatusOr<uint64_t> kept = cutter.segment_bytes_within(budget);
+    ASSERT_TRUE(kept.ok()) << kept.status().message();
+    EXPECT_LE(cutter.cut(*kept)->size(), budget);
+    if (*kept < cutter.segment_bytes()) {
+      EXPECT_GT(cutter.cut(*kept + 1)->size(), budget);
+    }
+  }
+  EXPECT_EQ(cutter.segment_bytes_within(stream.size()).value(), cutter.segment_bytes());
+  EXPECT_FALSE(cutter.segment_bytes_within(smallest - 1).ok());
+}
+
 }  // namespace
 }  // namespace srcodec

@@ -18,17 +18,14 @@ using Triangle = Kernel::Triangle_3;
 
 // ---------------------------------------------------------------------------
 // The AABB tree over a surface. Primitives hold only a 32-bit face index; the
-// triangle is built on the fly from the mesh (CGAL's "shared data" primitive,
-// which measured faster to build than caching the triangle and uses 72 bytes
-// a face less). Per face the tree costs 4 bytes of id and ~64 bytes of node.
+// triangle is built on the fly from the mesh (CGAL's "shared data"
+// primitive): no cached triangle, 72 bytes a face less.
 //
 // Distance queries start from a hint, the nearest of a set of points on the
 // surface found in a KD tree. CGAL's default puts one point per face in it,
-// which takes nearly as long to build as the AABB tree itself and more memory
-// (~100 MB per million faces); the centroid of every kHintStride-th face
-// builds 4x faster in a quarter of the memory, for ~10% more query time
-// (measured on 1M faces with 2 x 200k samples). The hints only speed the
-// search up: the distance found is the same (bit-identical in that test).
+// which costs nearly as much to build as the AABB tree itself; the centroid
+// of every kHintStride-th face is a quarter of that for slightly longer
+// queries. The hints only speed the search up: the distance is the same.
 
 constexpr size_t kHintStride = 4;
 
@@ -51,7 +48,7 @@ struct FaceTriangleMap {
 };
 
 // The reference point, along which CGAL splits the primitives when building
-// the tree, is the face's first corner (the centroid measured no better).
+// the tree: the face's first corner, read without arithmetic.
 struct FaceCornerMap {
   using key_type = uint32_t;
   using value_type = Point;
