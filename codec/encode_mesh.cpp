@@ -58,16 +58,38 @@ StatusOr<uint64_t> choose_cut(const StreamCutter& cutter, const Rate& rate, size
   return knee->segment_bytes;
 }
 
+// The remesher's steps a library user sees as encode stages; the rest are
+// notes on the way (a base size raised, fewer levels), not stages.
+const char* remesh_stage(RemeshStep step) {
+  switch (step) {
+    case RemeshStep::kOversampled: return "oversample";
+    case RemeshStep::kBaseMesh: return "base mesh";
+    case RemeshStep::kLevel: return "level";
+    case RemeshStep::kFit: return "fit";
+    case RemeshStep::kMeasuredCoarsening: return "coarsen";
+    case RemeshStep::kUntangle: return "untangle";
+    case RemeshStep::kSlivers: return "slivers";
+    default: return nullptr;
+  }
+}
+
 }  // namespace
 
 StatusOr<MeshEncodeResult> encode_mesh(const TriangleMesh& input, const MeshEncodeOptions& options) {
   const Clock::time_point start = Clock::now();
-  const auto step_done = [&](const char* stage) {
-    if (options.progress) options.progress(EncodeProgress{stage, seconds_since(start)});
+  const auto step_done = [&](const char* stage, int level = 0) {
+    if (options.progress) options.progress(EncodeProgress{stage, level, seconds_since(start)});
   };
   MeshEncodeResult out;
 
-  SRCODEC_ASSIGN_OR_RETURN(SemiRegularMesh semi_regular, remesh(input, options.remesh, &out.remesh));
+  RemeshOptions remesh_options = options.remesh;
+  if (options.progress)
+    remesh_options.progress = [&, theirs = options.remesh.progress](const RemeshProgress& p) {
+      if (theirs) theirs(p);
+      if (const char* stage = remesh_stage(p.step))
+        step_done(stage, p.step == RemeshStep::kLevel && p.refine_level != nullptr ? p.refine_level->level : 0);
+    };
+  SRCODEC_ASSIGN_OR_RETURN(SemiRegularMesh semi_regular, remesh(input, remesh_options, &out.remesh));
   out.seconds_remesh = seconds_since(start);
   step_done("remesh");
 

@@ -26,8 +26,9 @@ struct MeshEncodeOptions {
   // Samples per surface for the PSNR of the file kept (the cuts compared on
   // the way use kRateControlSamples).
   size_t samples = kRateControlSamples;
-  // Called after each step with its name ("remesh", "code", "rate",
-  // "measure") and the seconds since encode_mesh began; may be empty.
+  // Called after each step (EncodeProgress: the remesher's main steps, then
+  // "remesh", "code", "rate", "measure"), beside remesh.progress; may be
+  // empty.
   std::function<void(const EncodeProgress&)> progress;
 };
 

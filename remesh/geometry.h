@@ -5,6 +5,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "format/mesh.h"
@@ -18,6 +19,14 @@ std::vector<Eigen::Vector3d> unit_vertex_normals(const std::vector<Eigen::Vector
 
 // Per vertex (of n): 1 when it is on an edge that only one triangle uses.
 std::vector<char> boundary_vertices(size_t n, const std::vector<std::array<int32_t, 3>>& triangles);
+
+// The point of a set of triangles nearest a query, as the searches over
+// them (NearestTriangle, TriangleTree) answer it.
+struct TriangleHit {
+  int32_t triangle = -1;                                     // -1: the set has no triangle
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();           // the nearest point on it
+  double squared = std::numeric_limits<double>::infinity();  // squared distance to it
+};
 
 // The point of triangle abc nearest to p (by the triangle's Voronoi regions:
 // a vertex, an edge or the inside).

@@ -11,17 +11,14 @@
 #include <limits>
 #include <vector>
 
+#include "remesh/geometry.h"
 #include "remesh/point_cloud.h"
 
 namespace srcodec {
 
 class NearestTriangle {
  public:
-  struct Hit {
-    int32_t triangle = -1;  // -1: the mesh has no triangle
-    Eigen::Vector3d point = Eigen::Vector3d::Zero();  // the nearest point on it
-    double squared = std::numeric_limits<double>::infinity();  // squared distance to it
-  };
+  using Hit = TriangleHit;
 
   // Keeps references to both: they must outlive this and not change. With
   // `exact_search`, also builds what exact() needs.

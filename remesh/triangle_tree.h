@@ -12,15 +12,12 @@
 #include <limits>
 #include <vector>
 
+#include "remesh/geometry.h"
 namespace srcodec {
 
 class TriangleTree {
  public:
-  struct Hit {
-    int32_t triangle = -1;                                     // -1: the tree has no triangle
-    Eigen::Vector3d point = Eigen::Vector3d::Zero();           // the nearest point on it
-    double squared = std::numeric_limits<double>::infinity();  // squared distance to it
-  };
+  using Hit = TriangleHit;
 
   // Over the triangles listed in `faces` (indices into `triangles`), or all
   // of them when `faces` is empty. Copies the corners: the arrays need not

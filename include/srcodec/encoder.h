@@ -39,10 +39,15 @@ struct Rate {
   static Rate psnr(double db) { return {Kind::kPsnr, db}; }
 };
 
-// A step of the encode that has just finished.
+// A step of the encode that has just finished. The remesh (most of the
+// time) reports "oversample", "base mesh", "level" (once per level), "fit",
+// "coarsen" (with kMeasuredError), "untangle" (maybe several times) and
+// "slivers", then "remesh" when it is done; then "code" (the whole embedded
+// stream), "rate" (the cut chosen) and "measure" (the file's PSNR).
 struct EncodeProgress {
-  const char* stage = "";  // "remesh", "code" (the whole embedded stream), "rate" (the cut chosen), "measure"
-  double seconds = 0;      // since encode() began
+  const char* stage = "";
+  int level = 0;       // with "level": the refinement level just built
+  double seconds = 0;  // since encode() began
 };
 
 struct EncodeOptions {

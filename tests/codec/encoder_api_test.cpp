@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -47,7 +48,11 @@ TEST(EncoderApi, DefaultsWriteWhatTheCommandWrites) {
   StatusOr<std::string> expected = read_file_bytes(test::source_path("tests/data/spot_default.srm"));
   ASSERT_TRUE(expected.ok());
   EXPECT_EQ(std::string(file->begin(), file->end()), *expected);
-  EXPECT_EQ(stages, (std::vector<std::string>{"remesh", "code", "rate", "measure"}));
+  ASSERT_GE(stages.size(), 8u);
+  EXPECT_NE(std::find(stages.begin(), stages.end(), "base mesh"), stages.end());
+  EXPECT_EQ(std::count(stages.begin(), stages.end(), "level"), 4);
+  EXPECT_EQ(std::vector<std::string>(stages.end() - 4, stages.end()),
+            (std::vector<std::string>{"remesh", "code", "rate", "measure"}));
   EXPECT_EQ(report.bytes, file->size());
   EXPECT_GE(report.bytes, report.minimum_bytes);
   EXPECT_LE(report.bytes, report.full_stream_bytes);
