@@ -2,7 +2,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <string>
 
 namespace srcodec {
@@ -12,12 +11,6 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-std::string to_text(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
 }
 
 // The most segment bytes whose file fits a byte budget.
@@ -33,8 +26,8 @@ StatusOr<uint64_t> cut_within_budget(const StreamCutter& cutter, uint64_t budget
 StatusOr<uint64_t> cut_for_psnr(const StreamCutter& cutter, double target) {
   SRCODEC_ASSIGN_OR_RETURN(double best, whole_stream_psnr(cutter));
   if (best < target)
-    return invalid_argument("a PSNR of " + to_text(target) + " dB is out of reach: the whole stream gives " +
-                            to_text(best) + " dB, limited by the remesh (use more levels or base vertices)");
+    return invalid_argument("a PSNR of " + number_text(target) + " dB is out of reach: the whole stream gives " +
+                            number_text(best) + " dB, limited by the remesh (use more levels or base vertices)");
   return segment_bytes_for_psnr(cutter, target);
 }
 

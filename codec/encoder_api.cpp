@@ -3,7 +3,6 @@
 #include <srcodec/encoder.h>
 
 #include <cmath>
-#include <cstdio>
 #include <string>
 
 #include "codec/encode_mesh.h"
@@ -14,17 +13,11 @@
 namespace srcodec {
 namespace {
 
-std::string to_text(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
-}
-
 // `value` within [lo, hi] and finite, else a message naming the option.
 Status check_range(const char* name, double value, double lo, double hi) {
   if (std::isfinite(value) && value >= lo && value <= hi) return ok_status();
-  return invalid_argument(std::string("EncodeOptions::") + name + " " + to_text(value) + ": use " + to_text(lo) +
-                          " .. " + to_text(hi));
+  return invalid_argument(std::string("EncodeOptions::") + name + " " + number_text(value) + ": use " +
+                          number_text(lo) + " .. " + number_text(hi));
 }
 
 Status check_rate(const Rate& rate) {
@@ -33,7 +26,7 @@ Status check_rate(const Rate& rate) {
       return ok_status();
     case Rate::Kind::kBytes:
       if (rate.value >= 1 && rate.value <= 9.0e15 && std::floor(rate.value) == rate.value) return ok_status();
-      return invalid_argument("Rate::bytes " + to_text(rate.value) + ": use a whole number of bytes, at least 1");
+      return invalid_argument("Rate::bytes " + number_text(rate.value) + ": use a whole number of bytes, at least 1");
     case Rate::Kind::kBitsPerVertex:
       return check_range("rate (bits per vertex)", rate.value, 1e-6, 1e6);
     case Rate::Kind::kPsnr:
@@ -44,8 +37,8 @@ Status check_rate(const Rate& rate) {
 
 Status check_options(const EncodeOptions& o) {
   if (o.levels < -1 || o.levels > kSrmMaxLevels)
-    return invalid_argument("EncodeOptions::levels " + std::to_string(o.levels) + ": use -1 (chosen from the input) or 0 .. " +
-                            std::to_string(kSrmMaxLevels));
+    return invalid_argument("EncodeOptions::levels " + std::to_string(o.levels) +
+                            ": use -1 (chosen from the input) or 0 .. " + std::to_string(kSrmMaxLevels));
   switch (o.adaptivity) {
     case Adaptivity::kUniform:
       break;
@@ -86,11 +79,8 @@ MeshEncodeOptions to_mesh_encode_options(const EncodeOptions& o) {
 
 // The mesh as the stages take it: checked, then cleaned as read_mesh cleans.
 StatusOr<TriangleMesh> cleaned(const Mesh& mesh) {
-  SRCODEC_ASSIGN_OR_RETURN(TriangleMesh checked, from_public_mesh(mesh, "the mesh to encode"));
-  PolygonMesh polygons;
-  polygons.positions = std::move(checked.positions);
-  for (const auto& t : checked.triangles) polygons.add_face(t.data(), 3);
-  TriangleMesh out = clean_mesh(polygons);
+  SRCODEC_ASSIGN_OR_RETURN(const TriangleMesh checked, from_public_mesh(mesh, "the mesh to encode"));
+  TriangleMesh out = clean_mesh(to_polygon_mesh(checked));
   if (out.triangles.empty())
     return invalid_mesh("the mesh to encode has no triangle of positive area (after welding coincident vertices "
                         "and dropping degenerate faces)");

@@ -4,6 +4,7 @@
 
 #include <srcodec/status.h>
 
+#include <cstdio>
 #include <string>
 #include <utility>
 
@@ -17,6 +18,13 @@ inline Status parse_error(std::string m) { return {StatusCode::kParseError, std:
 inline Status invalid_mesh(std::string m) { return {StatusCode::kInvalidMesh, std::move(m)}; }
 inline Status unsupported(std::string m) { return {StatusCode::kUnsupported, std::move(m)}; }
 inline Status internal_error(std::string m) { return {StatusCode::kInternal, std::move(m)}; }
+
+// A number as the messages write it: %g, short, no trailing zeros.
+inline std::string number_text(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
 
 }  // namespace srcodec
 
