@@ -7,7 +7,7 @@
 #include <string>
 
 #include "codec/srm_codec.h"
-#include "format/mesh_api.h"
+#include "format/mesh_convert.h"
 #include "format/srm/srm_file.h"
 
 namespace srcodec {

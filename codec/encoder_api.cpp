@@ -6,7 +6,7 @@
 #include <string>
 
 #include "codec/encode_mesh.h"
-#include "format/mesh_api.h"
+#include "format/mesh_convert.h"
 #include "format/mesh_files/mesh_clean.h"
 #include "format/srm/srm_file.h"
 

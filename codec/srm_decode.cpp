@@ -4,6 +4,7 @@
 // wavelet plan while the coefficients decode, and the coarse levels are
 // lifted while the finest level's coefficients are still being decoded.
 #include <algorithm>
+#include <cstdint>
 #include <atomic>
 #include <future>
 #include <optional>
@@ -28,8 +29,9 @@ constexpr size_t kParallelScaleVertices = size_t{1} << 15;
 // The vertices of levels 0 .. `level`, refused over `max_vertices` before
 // anything is allocated (a tiny file can describe a huge mesh).
 StatusOr<uint64_t> vertices_up_to(const SrmHeader& h, int level, uint64_t max_vertices) {
+  // Saturating: the header's counts are untrusted varints of up to 64 bits.
   uint64_t total = 0;
-  for (int j = 0; j <= level; ++j) total += std::min<uint64_t>(h.level_vertices[j], max_vertices + 1);
+  for (int j = 0; j <= level; ++j) total += std::min(h.level_vertices[j], UINT64_MAX - total);
   if (total > max_vertices)
     return invalid_argument("level " + std::to_string(level) + " has " + std::to_string(total) +
                             " vertices, over the limit of " + std::to_string(max_vertices));

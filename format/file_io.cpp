@@ -48,7 +48,7 @@ Status write_file_atomically(const std::string& path, const std::string& bytes) 
   return ok_status();
 }
 
-StatusOr<std::string> read_file_bytes(const std::string& path, size_t max_bytes) {
+StatusOr<std::string> read_file_bytes(const std::string& path, uint64_t max_bytes) {
   std::error_code ec;
   if (!fs::exists(path, ec)) return not_found(path + ": no such file");
   if (!fs::is_regular_file(path, ec)) return io_error(path + ": not a regular file");

@@ -1,6 +1,7 @@
 // Whole-file reads and safe writes.
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include "format/status.h"
@@ -17,6 +18,6 @@ Status check_output_path(const std::string& path);
 Status write_file_atomically(const std::string& path, const std::string& bytes);
 
 // The whole file, or a clear error (missing, unreadable, larger than max_bytes).
-StatusOr<std::string> read_file_bytes(const std::string& path, size_t max_bytes = size_t{1} << 34);
+StatusOr<std::string> read_file_bytes(const std::string& path, uint64_t max_bytes = uint64_t{1} << 34);
 
 }  // namespace srcodec

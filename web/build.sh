@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# Builds srcodec's JavaScript package into web/dist/: the C++ decoder
+# compiled to WebAssembly by Debian's emscripten, the ES modules and their
+# TypeScript declarations. Installs what it needs (emscripten, Node.js's npm
+# packages of package-lock.json) when missing; safe to run again.
+set -euo pipefail
+cd "$(dirname "$0")"
+
+packages=(cmake make emscripten libeigen3-dev)
+command -v node >/dev/null || packages+=(nodejs)
+command -v npm >/dev/null || packages+=(npm)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "web/build.sh: installing ${missing[*]}" >&2
+  sudo=""
+  if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+# Debian's emscripten runs its JavaScript optimizer with the system's Node.js,
+# which finds Debian's acorn only here.
+export NODE_PATH=/usr/share/nodejs
+if [ ! -f build-wasm/CMakeCache.txt ]; then
+  emcmake cmake -S .. -B build-wasm -DCMAKE_BUILD_TYPE=Release -DSRCODEC_ENCODER=OFF -DSRCODEC_BUILD_TESTS=OFF \
+    -DEigen3_DIR=/usr/share/eigen3/cmake >/dev/null
+fi
+cmake --build build-wasm --target srcodec_wasm -j"$(nproc)"
+
+if [ ! -d node_modules ] || [ package-lock.json -nt node_modules ]; then
+  npm ci --no-audit --no-fund
+fi
+
+# Into a fresh folder, then moved into place: a failed build leaves the old dist/.
+rm -rf dist.new
+mkdir dist.new
+cp src/*.js src/*.d.ts build-wasm/web/srcodec_decoder.wasm dist.new/
+rm -rf dist
+mv dist.new dist
+echo "web/build.sh: built web/dist ($(du -k dist/srcodec_decoder.wasm | cut -f1) kB of WebAssembly)" >&2

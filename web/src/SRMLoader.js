@@ -1,0 +1,113 @@
+// A three.js loader for .srm files, in the manner of three.js's DRACOLoader,
+// that also hands over a refined geometry each time the stream allows one.
+//
+//   import { SRMLoader } from 'srcodec/three';
+//   const loader = new SRMLoader();
+//   loader.load('bunny.srm', (geometry) => { mesh.geometry = geometry; }, undefined, console.error,
+//               (geometry) => { mesh.geometry = geometry; });  // onRefine: coarse first
+import { BufferAttribute, BufferGeometry, Loader } from 'three';
+
+import { createDecoder } from './decoder.js';
+import { ProgressiveDecoder, decodeStream } from './stream.js';
+
+export class SRMLoader extends Loader {
+  #decoder = null;
+
+  constructor(manager) {
+    super(manager);
+    this.decodeOptions = { level: -1, maxVertices: undefined, everyBytes: 0 };
+    this.computeNormals = true;  // .srm files carry positions only: light needs normals
+  }
+
+  // The decoder to use (from createDecoder), or a promise of one; by
+  // default the loader makes its own on first use.
+  setDecoder(decoder) {
+    this.#decoder = Promise.resolve(decoder);
+    return this;
+  }
+
+  // Options for every decode: level, maxVertices, everyBytes (README).
+  setDecodeOptions(options) {
+    Object.assign(this.decodeOptions, options);
+    return this;
+  }
+
+  #getDecoder() {
+    this.#decoder ??= createDecoder();
+    return this.#decoder;
+  }
+
+  // onLoad(geometry) once the file is in; onRefine(geometry, event) for
+  // each refinement on the way (the last is the one onLoad gets); onError
+  // on a network or decode error that leaves no mesh. A file that decodes
+  // only in part loads the part, and `geometry.userData.srcodec.error` says
+  // why the rest did not.
+  load(url, onLoad, onProgress, onError, onRefine) {
+    const resolved = this.manager.resolveURL(this.path + url);
+    this.manager.itemStart(resolved);
+    const fail = (error) => {
+      if (onError) onError(error); else console.error(error);
+      this.manager.itemError(resolved);
+      this.manager.itemEnd(resolved);
+    };
+    this.#stream(resolved, onProgress, onRefine).then((geometry) => {
+      onLoad?.(geometry);
+      this.manager.itemEnd(resolved);
+    }, fail);
+  }
+
+  // Decodes a whole file in memory (an ArrayBuffer or Uint8Array).
+  parse(buffer, onLoad, onError) {
+    this.#getDecoder().then((decoder) => {
+      const progressive = new ProgressiveDecoder(decoder, this.decodeOptions);
+      progressive.push(buffer instanceof ArrayBuffer ? new Uint8Array(buffer) : buffer);
+      onLoad(this.#geometry(progressive.end(), progressive.error, progressive.bytesReceived));
+    }).catch((error) => { if (onError) onError(error); else throw error; });
+  }
+
+  async #stream(url, onProgress, onRefine) {
+    const decoder = await this.#getDecoder();
+    const response = await fetch(url, {
+      headers: new Headers(this.requestHeader),
+      credentials: this.withCredentials ? 'include' : 'same-origin',
+    });
+    if (!response.ok) throw new Error(`SRMLoader: ${url}: HTTP ${response.status} ${response.statusText}`);
+    const total = Number(response.headers.get('Content-Length')) || 0;
+    let last = null;
+    const options = {
+      ...this.decodeOptions,
+      onRefine: (mesh, event) => {
+        last = this.#geometry(mesh, null, event.bytesReceived);
+        last.userData.srcodec.milliseconds = event.milliseconds;
+        onRefine?.(last, event);
+      },
+      onProgress: (loaded) => onProgress?.({ loaded, total, lengthComputable: total > 0 }),
+    };
+    let result;
+    try {
+      result = await decodeStream(decoder, response.body, options);
+    } catch (error) {
+      if (error.mesh === undefined) throw error;  // not the network: the header is not an .srm's
+      error.message = `SRMLoader: ${url}: ${error.message}; the last refinement is the best mesh`;
+      error.geometry = last;
+      throw error;
+    }
+    if (last === null || last.userData.srcodec.bytesUsed !== result.mesh.bytesUsed) {
+      last = this.#geometry(result.mesh, result.error, result.bytesReceived);
+    }
+    last.userData.srcodec.error = result.error;
+    return last;
+  }
+
+  #geometry(mesh, error, bytesReceived) {
+    const geometry = new BufferGeometry();
+    geometry.setAttribute('position', new BufferAttribute(mesh.positions, 3));
+    geometry.setIndex(new BufferAttribute(mesh.indices, 1));
+    if (this.computeNormals) geometry.computeVertexNormals();
+    geometry.userData.srcodec = {
+      level: mesh.level, bytesUsed: mesh.bytesUsed, bytesReceived, lastCompletePlane: mesh.lastCompletePlane,
+      baseCut: mesh.baseCut, triangles: mesh.triangleCount, error,
+    };
+    return geometry;
+  }
+}
