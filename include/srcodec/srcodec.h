@@ -13,7 +13,9 @@
 //
 // Link srcodec::decoder for decode(), inspect(), truncate(), read_mesh() and
 // write_mesh(); srcodec::encoder adds encode(). Every call returns a Status
-// or StatusOr: check ok(), read message() when it is not.
+// or StatusOr: check ok(), read message() when it is not. The WebAssembly
+// build of the decoder (web/) has no files: read_mesh() and write_mesh() are
+// left out of it.
 #pragma once
 
 #include <srcodec/decoder.h>
