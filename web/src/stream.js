@@ -70,12 +70,18 @@ export class ProgressiveDecoder {
   // they reach, gets a refinement of its own: coarse to fine, even when one
   // chunk brings the flags of several levels (they are a few bytes each).
   #decodeLevelsPassed() {
-    const levels = this.#info.levelInfo;
-    const wanted = this.#options.level < 0 ? levels.length - 1 : Math.min(this.#options.level, levels.length - 1);
-    let reached = -1;
-    while (reached + 1 <= wanted && levels[reached + 1].drawableFrom <= this.#length) ++reached;
+    const reached = this.#levelAt(this.#length);
     for (let l = this.#levelShown + 1; l < reached; ++l) this.#decode(0, l);
     this.#levelShown = Math.max(this.#levelShown, reached);
+  }
+
+  // The level a decode of the first `length` bytes gives (-1: none yet).
+  #levelAt(length) {
+    const levels = this.#info?.levelInfo ?? [];
+    const wanted = this.#options.level < 0 ? levels.length - 1 : Math.min(this.#options.level, levels.length - 1);
+    let reached = -1;
+    while (reached + 1 <= wanted && levels[reached + 1].drawableFrom <= length) ++reached;
+    return reached;
   }
 
   // The stream is over: decodes the bytes not decoded yet. When the whole
@@ -147,7 +153,13 @@ export class ProgressiveDecoder {
     const failed = this.#error;
     for (let i = this.#marks.length - 1; i >= 0; --i) {
       const mark = this.#marks[i];
-      if (mark >= this.#length || (this.#last !== null && mark <= this.#last.bytesUsed)) continue;
+      // A mark gains nothing over the last mesh when that one has its bytes
+      // at its level; a coarser level's mesh (from #decodeLevelsPassed) may
+      // have used more bytes and still be worse.
+      const last = this.#last;
+      if (mark >= this.#length || (last !== null && mark <= last.bytesUsed && last.level >= this.#levelAt(mark))) {
+        continue;
+      }
       if (this.#decode(mark) !== null) break;
     }
     this.#error = failed;  // the stream's own bytes still did not decode: say so
