@@ -189,7 +189,13 @@ export async function decodeStream(decoder, stream, options = {}) {
       throw error;
     }
     if (chunk.done) break;
-    progressive.push(chunk.value);
+    try {
+      progressive.push(chunk.value);
+    } catch (error) {
+      // Bytes that are not an .srm file's: stop the download as well.
+      reader.cancel(error).catch(() => {});
+      throw error;
+    }
     options.onProgress?.(progressive.bytesReceived);
   }
   const mesh = progressive.end();
