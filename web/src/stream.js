@@ -17,6 +17,9 @@
 // for the last bytes.
 
 const HEADER_START = 10;  // magic, version, reserved byte, u32 header size (format/srm/README.md)
+// The header's declared file size sizes the buffer in one go, but a hostile
+// header may declare terabytes: above this size, the buffer doubles as bytes come.
+const DECLARED_BYTES_TRUSTED = 64 * 1024 * 1024;
 
 export class ProgressiveDecoder {
   #decoder;
@@ -103,7 +106,8 @@ export class ProgressiveDecoder {
     const add = chunk instanceof Uint8Array ? chunk : new Uint8Array(chunk);
     const need = this.#length + add.length;
     if (need > this.#bytes.length) {
-      const declared = this.#info?.declaredBytes ?? 0;
+      const declared = this.#info !== null && this.#info.declaredBytes <= DECLARED_BYTES_TRUSTED ?
+        this.#info.declaredBytes : 0;
       const grown = new Uint8Array(Math.max(need, declared, 2 * this.#bytes.length));
       grown.set(this.#bytes.subarray(0, this.#length));
       this.#bytes = grown;
