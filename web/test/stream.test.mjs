@@ -6,7 +6,7 @@ import assert from 'node:assert/strict';
 import { test } from 'node:test';
 
 import { createDecoder, decodeStream, ProgressiveDecoder } from '../dist/index.js';
-import { assertSameDecode, headerFields, nativeRun, readData, scratch } from './helpers.mjs';
+import { assertSameDecode, headerFields, nativeRun, readData, scratch, withHeaderField } from './helpers.mjs';
 
 const decoder = await createDecoder();
 const FILES = ['spot_default.srm', 'golden_v2.srm'];
@@ -245,3 +245,21 @@ test('a stream that is not an .srm file rejects after its first 10 bytes, readin
     for (let at = 0; at < 9; ++at) assert.equal(progressive.push(html.subarray(at, at + 1)), null);
     assert.throws(() => progressive.push(html.subarray(9, 10)), (e) => e.message === native.message);
   });
+
+test('a header declaring a huge file (valid CRC) streams what arrives without allocating what it claims', async () => {
+  const bytes = readData('golden_v2.srm');
+  const field = headerFields(bytes).fields.find((f) => f.name === 'flag_length[0]');
+  for (const claim of [2n ** 31n, 2n ** 40n]) {
+    const hostile = withHeaderField(bytes, field, claim);
+    assert.ok(decoder.inspect(hostile).declaredBytes > Number(claim));
+    // The bytes end inside the "flag chunk": the decoder draws the base mesh.
+    const expected = decoder.decode(hostile);
+    const progressive = new ProgressiveDecoder(decoder);
+    for (let at = 0; at < hostile.length; at += 100) progressive.push(hostile.subarray(at, at + 100));
+    assertSameDecode(progressive.end(), expected, `a claim of ${claim} bytes`);
+    assert.ok(progressive.bytes.buffer.byteLength < 1 << 20,
+      `a claim of ${claim} bytes: a buffer of ${progressive.bytes.buffer.byteLength} bytes`);
+    const { stream } = streamOf(hostile, { chunk: 100 });
+    assertSameDecode((await decodeStream(decoder, stream)).mesh, expected, `a stream claiming ${claim} bytes`);
+  }
+});
