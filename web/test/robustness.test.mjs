@@ -45,45 +45,56 @@ function judge(decoder, bytes, options, good) {
 
 // The cases of one job, generated the same way on every run.
 function* truncations(file) {
-  for (let n = 0; n <= file.length; ++n) yield { label: `first ${n} bytes`, bytes: file.subarray(0, n), options: {} };
+  for (let n = 0; n <= file.length; ++n) {
+    yield { kind: 'truncated', label: `first ${n} bytes`, bytes: file.subarray(0, n), options: {} };
+  }
 }
 
 function* mutations(file, count, seed) {
   const random = prng(seed);
   const { fields } = headerFields(file);
   const levels = file[fields.find((f) => f.name === 'levels').at];
+  // Most targeted mutations go to the counts, not the many segment lengths.
+  const counts = fields.filter((f) => !f.name.startsWith('segment_length'));
   for (let trial = 0; trial < count; ++trial) {
     const kind = trial % 10;
     let bytes = Array.from(file);
     let label;
+    let what;
     const edits = 1 + random.int(8);
     if (kind === 9) {
       // A header field rewritten with the header's CRC made right, so that
       // the value itself reaches the decoder.
-      const field = fields[random.int(fields.length)];
+      const field = random() < 0.75 ? counts[random.int(counts.length)] : fields[random.int(fields.length)];
       const choices = [0n, 1n, BigInt(field.value) + 1n, 2n ** 21n + 1n, 2n ** 40n,
         2n ** 62n, 2n ** 64n - 1n, BigInt(random.int(2 ** 31)), 255n];
       const value = field.kind === 'u8' ? BigInt(random.int(256)) : choices[random.int(choices.length)];
       bytes = Array.from(withHeaderField(file, field, value));
       label = `${field.name} = ${value}`;
+      what = 'header field';
     } else if (kind < 2) {
       for (let k = 0; k < edits; ++k) bytes[random.int(bytes.length)] = random.int(256);
       label = `${edits} bytes replaced`;
+      what = 'bytes replaced';
     } else if (kind < 5) {
       for (let k = 0; k < edits; ++k) bytes[random.int(bytes.length)] ^= 1 << random.int(8);
       label = `${edits} bits flipped`;
+      what = 'bits flipped';
     } else if (kind < 7) {
       for (let k = 0; k < edits; ++k) bytes.splice(random.int(bytes.length + 1), 0, random.int(256));
       label = `${edits} bytes inserted`;
+      what = 'bytes inserted';
     } else {
       for (let k = 0; k < edits; ++k) bytes.splice(random.int(bytes.length), 1);
       label = `${edits} bytes deleted`;
+      what = 'bytes deleted';
     }
     // Some at a coarser level or from a prefix: other paths through the decoder.
     const options = {};
     if (trial % 3 === 0) options.level = random.int(levels + 1);
     if (trial % 7 === 0) options.maxBytes = 1 + random.int(bytes.length);
-    yield { label: `mutation ${trial}: ${label} ${JSON.stringify(options)}`, bytes: Uint8Array.from(bytes), options };
+    yield { kind: what, label: `mutation ${trial}: ${label} ${JSON.stringify(options)}`, bytes: Uint8Array.from(bytes),
+      options };
   }
 }
 
@@ -94,7 +105,7 @@ async function runJob({ job, fileName, goodName, count, seed }) {
   const goodBytes = readData(goodName);
   const good = { bytes: goodBytes, mesh: decoder.decode(goodBytes) };
   const cases = job === 'truncations' ? truncations(file) : mutations(file, count, seed);
-  const result = { cases: 0, meshes: 0, failures: [], slowest: 0, slowestLabel: '' };
+  const result = { cases: 0, meshes: 0, failures: [], slowest: 0, slowestLabel: '', kinds: {} };
   const started = performance.now();
   for (const c of cases) {
     parentPort.postMessage({ at: c.label });
@@ -105,6 +116,9 @@ async function runJob({ job, fileName, goodName, count, seed }) {
     if (ms > result.slowest) Object.assign(result, { slowest: ms, slowestLabel: c.label });
     ++result.cases;
     if (mesh) ++result.meshes;
+    const kind = (result.kinds[c.kind] ??= { cases: 0, meshes: 0 });
+    ++kind.cases;
+    if (mesh) ++kind.meshes;
   }
   result.milliseconds = performance.now() - started;
   parentPort.postMessage({ result });
@@ -149,6 +163,7 @@ function inWorker(job, stallMs = 20000) {
 function reportJob(t, name, r) {
   t.diagnostic(`${name}: ${r.cases} cases, ${r.meshes} meshes, ${r.cases - r.meshes} errors, ` +
     `${(r.milliseconds / 1000).toFixed(2)} s; slowest ${r.slowest.toFixed(1)} ms (${r.slowestLabel})`);
+  t.diagnostic(`  meshes / cases: ${Object.entries(r.kinds).map(([k, v]) => `${k} ${v.meshes}/${v.cases}`).join(', ')}`);
   assert.deepEqual(r.failures.slice(0, 10), [], `${r.failures.length} cases went wrong`);
   assert.ok(r.slowest < SLOW_MS, `${r.slowestLabel} took ${r.slowest.toFixed(0)} ms`);
 }
