@@ -176,6 +176,8 @@ export class ProgressiveDecoder {
 // (error: why the whole stream did not decode, with `mesh` the best that
 // did). A stream that fails midway (the network) rejects with an Error whose
 // `mesh` is the last refinement, after decoding the bytes that did arrive.
+// Bytes that are not an .srm file's reject with the decoder's message as soon
+// as their first 10 bytes are in, and the stream is cancelled.
 export async function decodeStream(decoder, stream, options = {}) {
   const progressive = new ProgressiveDecoder(decoder, options);
   const reader = stream.getReader();
