@@ -163,7 +163,8 @@ function inWorker(job, stallMs = 20000) {
 function reportJob(t, name, r) {
   t.diagnostic(`${name}: ${r.cases} cases, ${r.meshes} meshes, ${r.cases - r.meshes} errors, ` +
     `${(r.milliseconds / 1000).toFixed(2)} s; slowest ${r.slowest.toFixed(1)} ms (${r.slowestLabel})`);
-  t.diagnostic(`  meshes / cases: ${Object.entries(r.kinds).map(([k, v]) => `${k} ${v.meshes}/${v.cases}`).join(', ')}`);
+  const kinds = Object.entries(r.kinds).map(([kind, n]) => `${kind} ${n.meshes}/${n.cases}`);
+  t.diagnostic(`  meshes / cases: ${kinds.join(', ')}`);
   assert.deepEqual(r.failures.slice(0, 10), [], `${r.failures.length} cases went wrong`);
   assert.ok(r.slowest < SLOW_MS, `${r.slowestLabel} took ${r.slowest.toFixed(0)} ms`);
 }

@@ -194,7 +194,8 @@ test('a file damaged in its last bit plane resolves with a mesh and .error (the 
   const bytes = readData('golden_v2.srm');
   const info = decoder.inspect(bytes);
   // The last plane's segments, one a level, from the header's table.
-  const lengths = headerFields(bytes).fields.filter((f) => f.name.startsWith('segment_length')).map((f) => Number(f.value));
+  const lengths = headerFields(bytes).fields.filter((f) => f.name.startsWith('segment_length'))
+    .map((f) => Number(f.value));
   const last = info.planes.at(-1);
   const before = info.planes.at(-2).end;
   const segments = lengths.slice(-(info.levels + 1));
