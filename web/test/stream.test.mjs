@@ -6,7 +6,9 @@ import assert from 'node:assert/strict';
 import { test } from 'node:test';
 
 import { createDecoder, decodeStream, ProgressiveDecoder } from '../dist/index.js';
-import { assertSameDecode, headerFields, nativeRun, readData, scratch, withHeaderField } from './helpers.mjs';
+import {
+  assertSameDecode, headerFields, meshProblem, nativeRun, prng, readData, scratch, withHeaderField,
+} from './helpers.mjs';
 
 const decoder = await createDecoder();
 const FILES = ['spot_default.srm', 'golden_v2.srm'];
@@ -263,4 +265,36 @@ test('a header declaring a huge file (valid CRC) streams what arrives without al
     const { stream } = streamOf(hostile, { chunk: 100 });
     assertSameDecode((await decodeStream(decoder, stream)).mesh, expected, `a stream claiming ${claim} bytes`);
   }
+});
+
+// The stream layer on hostile bytes: push and end give meshes or throw the
+// decoder's Errors, never one of their own (a RangeError of a buffer, a
+// TypeError of a missing header).
+test('seeded mutations streamed through ProgressiveDecoder: a valid mesh or the decoder\'s Error', () => {
+  const bytes = readData('golden_v2.srm');
+  const { fields } = headerFields(bytes);
+  const random = prng(7);
+  const outcomes = { meshes: 0, errors: 0 };
+  for (let trial = 0; trial < 120; ++trial) {
+    let mutated = bytes.slice();
+    if (trial % 2) {
+      const values = [0n, 1n, 2n ** 40n, BigInt(random.int(1e6))];
+      mutated = withHeaderField(bytes, fields[random.int(fields.length)], values[random.int(values.length)]);
+    } else {
+      for (let k = 1 + random.int(8); k > 0; --k) mutated[random.int(mutated.length)] ^= 1 << random.int(8);
+    }
+    const progressive = new ProgressiveDecoder(decoder);
+    try {
+      for (let at = 0; at < mutated.length; at += 64) progressive.push(mutated.subarray(at, at + 64));
+      const mesh = progressive.end();
+      assert.equal(meshProblem(mesh), null, `trial ${trial}`);
+      ++outcomes.meshes;
+    } catch (error) {
+      if (error instanceof assert.AssertionError) throw error;
+      assert.ok(typeof error.code === 'string' && error.message.length > 0,
+        `trial ${trial}: ${error.constructor.name}: ${error.message}`);
+      ++outcomes.errors;
+    }
+  }
+  assert.ok(outcomes.meshes > 0 && outcomes.errors > 0, JSON.stringify(outcomes));
 });
