@@ -57,12 +57,12 @@ function* mutations(file, count, seed) {
   // Most targeted mutations go to the counts, not the many segment lengths.
   const counts = fields.filter((f) => !f.name.startsWith('segment_length'));
   for (let trial = 0; trial < count; ++trial) {
-    const kind = trial % 10;
+    const slot = trial % 10;  // which kind of mutation
     let bytes = Array.from(file);
     let label;
     let what;
     const edits = 1 + random.int(8);
-    if (kind === 9) {
+    if (slot === 9) {
       // A header field rewritten with the header's CRC made right, so that
       // the value itself reaches the decoder.
       const field = random() < 0.75 ? counts[random.int(counts.length)] : fields[random.int(fields.length)];
@@ -72,15 +72,15 @@ function* mutations(file, count, seed) {
       bytes = Array.from(withHeaderField(file, field, value));
       label = `${field.name} = ${value}`;
       what = 'header field';
-    } else if (kind < 2) {
+    } else if (slot < 2) {
       for (let k = 0; k < edits; ++k) bytes[random.int(bytes.length)] = random.int(256);
       label = `${edits} bytes replaced`;
       what = 'bytes replaced';
-    } else if (kind < 5) {
+    } else if (slot < 5) {
       for (let k = 0; k < edits; ++k) bytes[random.int(bytes.length)] ^= 1 << random.int(8);
       label = `${edits} bits flipped`;
       what = 'bits flipped';
-    } else if (kind < 7) {
+    } else if (slot < 7) {
       for (let k = 0; k < edits; ++k) bytes.splice(random.int(bytes.length + 1), 0, random.int(256));
       label = `${edits} bytes inserted`;
       what = 'bytes inserted';
