@@ -123,6 +123,9 @@ export interface StreamResult {
   error: DecodeError | null;
 }
 
-/** Rejects, after a stream error, with an Error whose `mesh` is the last refinement. */
+/**
+ * Rejects, after a stream error, with an Error whose `mesh` is the last refinement; on bytes that
+ * are not an .srm file's, with the decoder's message, cancelling the stream.
+ */
 export function decodeStream(decoder: Decoder, stream: ReadableStream<Uint8Array>,
                              options?: ProgressiveOptions): Promise<StreamResult>;

@@ -17,6 +17,9 @@
 // for the last bytes.
 
 const HEADER_START = 10;  // magic, version, reserved byte, u32 header size (format/srm/README.md)
+// The header's declared file size sizes the buffer in one go, but a hostile
+// header may declare terabytes: above this size, the buffer doubles as bytes come.
+const DECLARED_BYTES_TRUSTED = 64 * 1024 * 1024;
 
 export class ProgressiveDecoder {
   #decoder;
@@ -70,12 +73,18 @@ export class ProgressiveDecoder {
   // they reach, gets a refinement of its own: coarse to fine, even when one
   // chunk brings the flags of several levels (they are a few bytes each).
   #decodeLevelsPassed() {
-    const levels = this.#info.levelInfo;
-    const wanted = this.#options.level < 0 ? levels.length - 1 : Math.min(this.#options.level, levels.length - 1);
-    let reached = -1;
-    while (reached + 1 <= wanted && levels[reached + 1].drawableFrom <= this.#length) ++reached;
+    const reached = this.#levelAt(this.#length);
     for (let l = this.#levelShown + 1; l < reached; ++l) this.#decode(0, l);
     this.#levelShown = Math.max(this.#levelShown, reached);
+  }
+
+  // The level a decode of the first `length` bytes gives (-1: none yet).
+  #levelAt(length) {
+    const levels = this.#info?.levelInfo ?? [];
+    const wanted = this.#options.level < 0 ? levels.length - 1 : Math.min(this.#options.level, levels.length - 1);
+    let reached = -1;
+    while (reached + 1 <= wanted && levels[reached + 1].drawableFrom <= length) ++reached;
+    return reached;
   }
 
   // The stream is over: decodes the bytes not decoded yet. When the whole
@@ -97,7 +106,8 @@ export class ProgressiveDecoder {
     const add = chunk instanceof Uint8Array ? chunk : new Uint8Array(chunk);
     const need = this.#length + add.length;
     if (need > this.#bytes.length) {
-      const declared = this.#info?.declaredBytes ?? 0;
+      const declared = this.#info !== null && this.#info.declaredBytes <= DECLARED_BYTES_TRUSTED ?
+        this.#info.declaredBytes : 0;
       const grown = new Uint8Array(Math.max(need, declared, 2 * this.#bytes.length));
       grown.set(this.#bytes.subarray(0, this.#length));
       this.#bytes = grown;
@@ -147,7 +157,13 @@ export class ProgressiveDecoder {
     const failed = this.#error;
     for (let i = this.#marks.length - 1; i >= 0; --i) {
       const mark = this.#marks[i];
-      if (mark >= this.#length || (this.#last !== null && mark <= this.#last.bytesUsed)) continue;
+      // A mark gains nothing over the last mesh when that one has its bytes
+      // at its level; a coarser level's mesh (from #decodeLevelsPassed) may
+      // have used more bytes and still be worse.
+      const last = this.#last;
+      if (mark >= this.#length || (last !== null && mark <= last.bytesUsed && last.level >= this.#levelAt(mark))) {
+        continue;
+      }
       if (this.#decode(mark) !== null) break;
     }
     this.#error = failed;  // the stream's own bytes still did not decode: say so
@@ -160,6 +176,8 @@ export class ProgressiveDecoder {
 // (error: why the whole stream did not decode, with `mesh` the best that
 // did). A stream that fails midway (the network) rejects with an Error whose
 // `mesh` is the last refinement, after decoding the bytes that did arrive.
+// Bytes that are not an .srm file's reject with the decoder's message as soon
+// as their first 10 bytes are in, and the stream is cancelled.
 export async function decodeStream(decoder, stream, options = {}) {
   const progressive = new ProgressiveDecoder(decoder, options);
   const reader = stream.getReader();
@@ -177,7 +195,13 @@ export async function decodeStream(decoder, stream, options = {}) {
       throw error;
     }
     if (chunk.done) break;
-    progressive.push(chunk.value);
+    try {
+      progressive.push(chunk.value);
+    } catch (error) {
+      // Bytes that are not an .srm file's: stop the download as well.
+      reader.cancel(error).catch(() => {});
+      throw error;
+    }
     options.onProgress?.(progressive.bytesReceived);
   }
   const mesh = progressive.end();

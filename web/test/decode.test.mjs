@@ -1,0 +1,187 @@
+// The WebAssembly decoder against the C++ one (the native `srcodec` CLI):
+// positions are the C++ doubles rounded to float32 (Math.fround), bit for
+// bit; indices, level, bytes used, last complete plane and base cut are
+// identical; where C++ refuses the bytes, the WebAssembly decoder throws the
+// same message. Also `inspect` against `srcodec info --json`.
+import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
+import { test } from 'node:test';
+
+import { createDecoder } from '../dist/index.js';
+import { assertSameDecode, assertSameMesh, dataPath, nativeInfo, nativeRun, readData, scratch } from './helpers.mjs';
+import { parseObj } from './native.mjs';
+
+const decoder = await createDecoder();
+
+function tryDecode(bytes, options) {
+  try {
+    return { mesh: decoder.decode(bytes, options) };
+  } catch (error) {
+    return { error };
+  }
+}
+
+// Decodes `bytes` (the file at `path`) at `level` from its first `prefix`
+// bytes (0: all) both ways and compares. Returns the WebAssembly mesh, or
+// null when both refused.
+function compareWithNative(path, bytes, { level = -1, prefix = 0 } = {}) {
+  const what = `${path} level ${level}${prefix ? `, first ${prefix} bytes` : ''}`;
+  const native = nativeRun(path, { level, bytes: prefix });
+  const viaOption = tryDecode(bytes, { level, maxBytes: prefix });
+  // A prefix handed over as shorter bytes decodes as the maxBytes option does.
+  const viaCut = prefix ? tryDecode(bytes.subarray(0, prefix), { level }) : viaOption;
+  if (!native.ok) {
+    assert.ok(viaOption.error, `${what}: C++ refused (${native.message}) but WebAssembly gave a mesh`);
+    assert.equal(viaOption.error.message, native.message, `${what}: the refusal's message`);
+    assert.ok(viaCut.error, `${what}: the cut bytes gave a mesh`);
+    assert.equal(viaCut.error.message, native.message, `${what}: the cut bytes' refusal`);
+    return null;
+  }
+  for (const { error } of [viaOption, viaCut]) {
+    if (error) assert.fail(`${what}: C++ decoded it, WebAssembly threw "${error.message}"`);
+  }
+  const mesh = viaOption.mesh;
+  assertSameMesh(mesh, native, what);
+  const r = native.report;
+  assert.equal(mesh.level, r.level, `${what}: level`);
+  assert.equal(mesh.vertexCount, r.vertices, `${what}: vertices`);
+  assert.equal(mesh.triangleCount, r.triangles, `${what}: triangles`);
+  assert.equal(mesh.bytesUsed, r.bytes_used, `${what}: bytesUsed`);
+  assert.equal(mesh.lastCompletePlane, r.last_complete_plane, `${what}: lastCompletePlane`);
+  assert.equal(mesh.baseCut, r.base_cut, `${what}: baseCut`);
+  assertSameDecode(viaCut.mesh, mesh, `${what}, as cut bytes`);
+  return mesh;
+}
+
+for (const version of [1, 2]) {
+  test(`golden_v${version}.srm decodes as C++ decodes it at every level`, () => {
+    const path = dataPath(`golden_v${version}.srm`);
+    const bytes = readData(`golden_v${version}.srm`);
+    const { levels } = decoder.inspect(bytes);
+    for (let level = -1; level <= levels; ++level) compareWithNative(path, bytes, { level });
+    // A level above the file's finest: both refuse it alike.
+    compareWithNative(path, bytes, { level: levels + 1 });
+  });
+
+  // The committed OBJs pin the format; the C++ golden test (tests/codec/
+  // golden_test.cpp) holds the decoder to them within 1e-6 per vertex, since
+  // they are allowed to differ from today's doubles in their last digits.
+  test(`golden_v${version}.srm matches its committed OBJs at every level`, () => {
+    const bytes = readData(`golden_v${version}.srm`);
+    for (let level = 0; level <= 2; ++level) {
+      const pinned = parseObj(readFileSync(dataPath(`golden_v${version}_l${level}.obj`), 'utf8'));
+      const mesh = decoder.decode(bytes, { level });
+      assert.equal(mesh.level, level);
+      assert.deepEqual(mesh.indices, pinned.indices, `level ${level}: indices`);
+      assert.equal(mesh.positions.length, pinned.positions.length, `level ${level}: vertex count`);
+      // 1e-6, plus float32's rounding of coordinates below 2 (under 1.2e-7 a coordinate).
+      const tolerance = 1e-6 + Math.sqrt(3) * 2 ** -23;
+      let worst = 0;
+      for (let v = 0; v < pinned.positions.length; v += 3) {
+        const dx = mesh.positions[v] - pinned.positions[v];
+        const dy = mesh.positions[v + 1] - pinned.positions[v + 1];
+        const dz = mesh.positions[v + 2] - pinned.positions[v + 2];
+        worst = Math.max(worst, Math.hypot(dx, dy, dz));
+      }
+      assert.ok(worst < tolerance, `level ${level}: a vertex ${worst} from its pinned position`);
+    }
+  });
+}
+
+for (const name of ['spot_default', 'bunny_npm_default']) {
+  test(`the bundled sample ${name}.srm decodes as C++ decodes it at every level`, () => {
+    const path = dataPath(`${name}.srm`);
+    const bytes = readData(`${name}.srm`);
+    const { levels } = decoder.inspect(bytes);
+    for (let level = -1; level <= levels; ++level) compareWithNative(path, bytes, { level });
+  });
+}
+
+// Twenty prefix lengths over the whole file: the landmarks where what the
+// bytes hold changes (inside the 10 fixed bytes, the header, the base mesh,
+// the flags, each side of a plane's end) and even steps between them.
+function prefixLengths(info) {
+  const n = info.fileBytes;
+  const header = info.headerBytes;
+  const base = info.levelInfo[0].drawableFrom;
+  const finest = info.levelInfo[info.levels].drawableFrom;
+  const planeEnd = info.planes[Math.floor(info.planes.length / 3)].end;
+  const landmarks = [5, 10, header >> 1, header - 1, header, header + 1, (header + base) >> 1, base - 1, base,
+    (base + finest) >> 1, finest, planeEnd - 1, planeEnd, n - 1];
+  const wanted = new Set(landmarks.filter((p) => p > 0 && p < n));
+  for (let k = 0; k < 20 && wanted.size < 20; ++k) wanted.add(Math.round((n * (k + 0.5)) / 20));
+  return [...wanted].sort((a, b) => a - b);
+}
+
+test('20 prefixes of spot_default.srm decode as C++ decodes them, and refuse as it does', () => {
+  const path = dataPath('spot_default.srm');
+  const bytes = readData('spot_default.srm');
+  const info = decoder.inspect(bytes);
+  const lengths = prefixLengths(info);
+  assert.equal(lengths.length, 20);
+  const regions = { header: 0, base: 0, flags: 0, coefficients: 0 };
+  for (const prefix of lengths) {
+    const mesh = compareWithNative(path, bytes, { prefix });
+    // Also one coarser level: a prefix serves every level up to what it holds.
+    compareWithNative(path, bytes, { prefix, level: 1 });
+    if (prefix < info.headerBytes) {
+      ++regions.header;
+      assert.equal(mesh, null, `${prefix} bytes (inside the header) gave a mesh`);
+    } else if (prefix < info.levelInfo[0].drawableFrom) {
+      ++regions.base;
+      assert.ok(mesh.baseCut, `${prefix} bytes (inside the base mesh): not a base cut`);
+    } else if (prefix < info.levelInfo[info.levels].drawableFrom) {
+      ++regions.flags;
+      assert.ok(mesh.level < info.levels, `${prefix} bytes (inside the flags): level ${mesh.level}`);
+    } else {
+      ++regions.coefficients;
+    }
+  }
+  for (const [region, count] of Object.entries(regions)) assert.ok(count > 0, `no prefix ends inside the ${region}`);
+});
+
+// `srcodec info --json`'s names for FileInfo's fields.
+function assertSameInfo(info, native, what) {
+  const same = [['version', 'version'], ['rawPlanes', 'raw_planes'], ['fileBytes', 'file_bytes'],
+    ['declaredBytes', 'declared_bytes'], ['headerBytes', 'header_bytes'], ['baseBytes', 'base_mesh_bytes'],
+    ['inputVertices', 'input_vertices'], ['inputTriangles', 'input_triangles'], ['baseVertices', 'base_vertices'],
+    ['baseTriangles', 'base_triangles'], ['baseBits', 'base_bits'], ['topPlane', 'top_plane']];
+  for (const [ours, theirs] of same) assert.equal(info[ours], native[theirs], `${what}: ${ours}`);
+  // The CLI prints these with 10 significant digits.
+  assert.ok(Math.abs(info.bitsPerVertex - native.bpv) <= 1e-9 * native.bpv, `${what}: bitsPerVertex`);
+  assert.ok(Math.abs(info.quantizerStep - native.quantizer_step) <= 1e-9 * native.quantizer_step,
+    `${what}: quantizerStep`);
+  assert.equal(info.levels, native.levels.length - 1, `${what}: levels`);
+  assert.deepEqual(info.levelInfo, native.levels.map((l) => ({
+    vertices: l.vertices, flagBytes: l.flag_bytes, coefficientBytes: l.coefficient_bytes, drawableFrom: l.drawable_from,
+  })), `${what}: levels`);
+  assert.deepEqual(info.planes, native.planes.map((p) => ({ plane: p.plane, bytes: p.bytes, end: p.end })),
+    `${what}: planes`);
+}
+
+test('inspect agrees with srcodec info --json, for whole files and prefixes', () => {
+  const files = scratch();
+  try {
+    for (const name of ['golden_v1', 'golden_v2', 'spot_default', 'bunny_npm_default']) {
+      const bytes = readData(`${name}.srm`);
+      assertSameInfo(decoder.inspect(bytes), nativeInfo(dataPath(`${name}.srm`)), name);
+      const info = decoder.inspect(bytes);
+      // A prefix: the bytes present and the bytes the table declares differ.
+      for (const prefix of [info.headerBytes, info.levelInfo[0].drawableFrom + 1, bytes.length >> 1]) {
+        const path = files.write(`${name}_${prefix}.srm`, bytes.subarray(0, prefix));
+        const cut = decoder.inspect(bytes.subarray(0, prefix));
+        assertSameInfo(cut, nativeInfo(path), `${name}, first ${prefix} bytes`);
+        assert.equal(cut.fileBytes, prefix);
+        assert.equal(cut.declaredBytes, bytes.length);
+      }
+      // Inside the header neither reads it, with the same message.
+      const inside = files.write(`${name}_header.srm`, bytes.subarray(0, info.headerBytes - 1));
+      const native = nativeRun(inside);
+      assert.equal(native.ok, false);
+      assert.throws(() => decoder.inspect(bytes.subarray(0, info.headerBytes - 1)),
+        (e) => e.message === native.message && e.code === 'parse_error');
+    }
+  } finally {
+    files.remove();
+  }
+});
