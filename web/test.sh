@@ -14,4 +14,4 @@ if ! dpkg-query -W -f='${Status}' chromium 2>/dev/null | grep -q "install ok ins
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends chromium >/dev/null
 fi
 mkdir -p test-output
-node --test --test-reporter=spec test/
+node --test --test-reporter=spec test/*.test.mjs

@@ -99,6 +99,8 @@ export class ProgressiveDecoder {
     }
     if (this.#error !== null && this.#length > 0) this.#fallBack();
     if (this.#last === null) throw this.#error ?? new Error('srcodec: no bytes arrived');
+    // Read again: the header's reading when it arrived counted only the bytes present then.
+    if (this.#info !== null) this.#info = this.#decoder.inspect(this.bytes);
     return this.#last;
   }
 
