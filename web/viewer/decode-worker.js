@@ -1,0 +1,102 @@
+// The viewer's decoding, off the page's thread: a large or hostile file
+// then slows the refinements, never the tab. Reads one .srm (a URL or a
+// dropped File) through a ProgressiveDecoder and posts each refinement.
+//
+// In:  { type: 'open', url | file, maxVertices }   once per worker
+//      { type: 'prefix', maxBytes, id }            after 'done': decode a prefix
+// Out: { type: 'header', info, total }
+//      { type: 'progress', bytesReceived, total, error }
+//      { type: 'refine', mesh, bytesReceived, milliseconds }   (mesh arrays transferred)
+//      { type: 'done', bytesReceived, total, error, complete }  the stream is over
+//      { type: 'failed', stage, message, bytesReceived }       no mesh, or the network broke
+//      { type: 'prefixed', id, mesh | error }
+import { createDecoder, ProgressiveDecoder } from '../dist/index.js';
+
+let decoder = null;
+let progressive = null;
+let maxVertices;
+
+const messageOf = (error) => String(error?.message ?? error).replace(/^srcodec: /, '');
+
+function postMesh(type, mesh, extra) {
+  const { positions, indices, ...numbers } = mesh;
+  postMessage({ type, mesh: { positions, indices, ...numbers }, ...extra }, [positions.buffer, indices.buffer]);
+}
+
+async function open({ url, file, maxVertices: limit }) {
+  maxVertices = limit;
+  let stage = 'load';
+  let total = 0;
+  try {
+    decoder = await createDecoder();
+    let stream;
+    if (file) {
+      stream = file.stream();
+      total = file.size;
+    } else {
+      const response = await fetch(url);
+      if (!response.ok) throw new Error(`cannot load ${url}: HTTP ${response.status} ${response.statusText}`);
+      total = Number(response.headers.get('Content-Length')) || 0;
+      stream = response.body;
+    }
+    stage = 'decode';
+    let headerPosted = false;
+    progressive = new ProgressiveDecoder(decoder, {
+      maxVertices,
+      onRefine: (mesh, event) => postMesh('refine', mesh, { bytesReceived: event.bytesReceived, milliseconds: event.milliseconds }),
+    });
+    const reader = stream.getReader();
+    for (;;) {
+      let chunk;
+      stage = 'network';
+      try {
+        chunk = await reader.read();
+      } catch (cause) {
+        // The bytes that did arrive still give their mesh.
+        const received = progressive.bytesReceived;
+        try { progressive.end(); } catch { /* nothing decodable arrived */ }
+        postMessage({ type: 'failed', stage, message: messageOf(cause), bytesReceived: received, total });
+        return;
+      }
+      stage = 'decode';
+      if (chunk.done) break;
+      progressive.push(chunk.value);  // throws on a header that is not an .srm's
+      if (!headerPosted && progressive.info !== null) {
+        headerPosted = true;
+        total ||= progressive.info.declaredBytes;
+        postMessage({ type: 'header', info: progressive.info, total });
+      }
+      postMessage({ type: 'progress', bytesReceived: progressive.bytesReceived, total,
+                    error: progressive.error && messageOf(progressive.error) });
+    }
+    const received = progressive.bytesReceived;
+    if (!headerPosted) {
+      if (received === 0) throw new Error('the file is empty');
+      progressive.end();  // a header cut short: throws the decoder's reason
+      postMessage({ type: 'header', info: progressive.info, total: total || progressive.info.declaredBytes });
+    } else {
+      progressive.end();
+    }
+    const declared = progressive.info?.declaredBytes ?? received;
+    postMessage({
+      type: 'done', bytesReceived: received, total, declaredBytes: declared,
+      complete: received >= declared, error: progressive.error && messageOf(progressive.error),
+    });
+  } catch (error) {
+    postMessage({ type: 'failed', stage, message: messageOf(error), bytesReceived: progressive?.bytesReceived ?? 0, total });
+  }
+}
+
+function prefix({ maxBytes, id }) {
+  try {
+    const mesh = decoder.decode(progressive.bytes, { maxBytes, maxVertices });
+    postMesh('prefixed', mesh, { id, maxBytes });
+  } catch (error) {
+    postMessage({ type: 'prefixed', id, maxBytes, error: messageOf(error) });
+  }
+}
+
+onmessage = ({ data }) => {
+  if (data.type === 'open') open(data);
+  else if (data.type === 'prefix') prefix(data);
+};
