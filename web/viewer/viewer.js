@@ -215,13 +215,23 @@ function reset(name) {
   const old = object.geometry;
   object.geometry = new THREE.BufferGeometry();
   old.dispose();
-  ui.file.textContent = name;
+  ui.file.textContent = shortName(name);
   for (const field of [ui.bytes, ui.level, ui.triangles, ui.milliseconds]) field.textContent = '–';
   ui.progress.value = 0;
   ui.prefix.disabled = true;
   ui.prefixBytes.textContent = '–';
   say(`loading ${name}…`);
   requestFrame();
+}
+
+// The last part of a URL path, for the panel.
+function shortName(name) {
+  const last = name.split('?')[0].split('/').filter(Boolean).at(-1) ?? name;
+  try {
+    return decodeURIComponent(last);
+  } catch {
+    return last;
+  }
 }
 
 function maxVerticesParam() {
