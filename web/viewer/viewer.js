@@ -316,7 +316,9 @@ function finish(event) {
   showBytes(event.bytesReceived, event.total);
   const mesh = state.lastMesh;
   const shown = mesh ? `level ${mesh.level}, ${count(mesh.indices.length / 3)} triangles from ${count(mesh.bytesUsed)} bytes` : null;
-  if (event.type === 'failed') {
+  if (event.type === 'done' && event.error && !mesh) {
+    fail(`cannot show ${state.src}: ${event.error}`);
+  } else if (event.type === 'failed') {
     if (event.stage === 'network') {
       const lost = `the connection broke after ${count(event.bytesReceived)} of ${count(event.total)} bytes (${event.message})`;
       fail(mesh ? `${lost}; showing the last refinement (${shown})` : `${lost}; no mesh arrived`);
