@@ -9,7 +9,7 @@
 //      { type: 'refine', mesh, bytesReceived, milliseconds }   (mesh arrays transferred)
 //      { type: 'done', bytesReceived, total, error, complete }  the stream is over
 //      { type: 'failed', stage, message, bytesReceived }       no mesh, or the network broke
-//      { type: 'prefixed', id, mesh | error }
+//      { type: 'prefixed', id, maxBytes, mesh, milliseconds | error }
 import { createDecoder, ProgressiveDecoder } from '../dist/index.js';
 
 let decoder = null;
@@ -132,9 +132,10 @@ async function decodeAtOnce(reader, pending, total) {
 }
 
 function prefix({ maxBytes, id }) {
+  const started = performance.now();
   try {
     const mesh = decoder.decode(wholeBytes ?? progressive.bytes, { maxBytes, maxVertices });
-    postMesh('prefixed', mesh, { id, maxBytes });
+    postMesh('prefixed', mesh, { id, maxBytes, milliseconds: performance.now() - started });
   } catch (error) {
     postMessage({ type: 'prefixed', id, maxBytes, error: messageOf(error) });
   }

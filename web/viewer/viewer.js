@@ -20,7 +20,7 @@
 //   error        why the file did not (wholly) decode, or null
 //   message, messageKind   the text shown in the panel, and 'info' | 'warning' | 'error'
 //   lastMesh     { positions, indices, level, bytesUsed } of the mesh on screen
-//   prefix       after a slider move: { maxBytes, level, triangles, error } (pending: null)
+//   prefix       after a slider move: { maxBytes, level, triangles, milliseconds, error } (pending: null)
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { DEFAULT_MAX_VERTICES, MAX_VERTICES_LIMIT } from 'srcodec';
@@ -195,8 +195,9 @@ function say(text, kind = 'info') {
 
 const count = (n) => n.toLocaleString('en');
 
-function showBytes(received, total) {
-  state.bytesReceived = received;
+// The bytes the panel shows: those received, or the slider's prefix.
+function showBytes(received, total, isPrefix = false) {
+  if (!isPrefix) state.bytesReceived = received;
   ui.bytes.textContent = total > 0 ? `${count(received)} / ${count(total)}` : count(received);
   ui.progress.value = total > 0 ? Math.min(1, received / total) : 0;
 }
@@ -372,8 +373,11 @@ function onPrefix(data) {
   }
   const { mesh } = data;
   showMesh(mesh);
-  showBytes(data.maxBytes, state.total);
-  state.prefix = { maxBytes: data.maxBytes, level: mesh.level, triangles: mesh.triangleCount, error: null };
+  showBytes(data.maxBytes, state.total, true);
+  ui.milliseconds.textContent = `${data.milliseconds.toFixed(1)} ms`;
+  state.prefix = {
+    maxBytes: data.maxBytes, level: mesh.level, triangles: mesh.triangleCount, milliseconds: data.milliseconds, error: null,
+  };
   if (state.messageKind === 'warning' && state.message.startsWith('the first ')) say('');
   requestFrame();
 }
