@@ -24,6 +24,7 @@ const output = fileURLToPath(new URL('../test-output/', import.meta.url));
 let browser;
 let workDir;
 let damaged;
+let hostile;
 const servers = [];
 
 // The bytes of an .srm with part of its coefficients flipped: the header and
@@ -36,6 +37,61 @@ async function damagedCopy(bytes) {
   const from = start + Math.floor((info.declaredBytes - start) / 3);
   for (let i = from; i < from + 16; ++i) copy[i] ^= 0xa5;
   return copy;
+}
+
+function crc32(bytes) {
+  let crc = ~0;
+  for (const byte of bytes) {
+    crc ^= byte;
+    for (let k = 0; k < 8; ++k) crc = (crc >>> 1) ^ (0xedb88320 & -(crc & 1));
+  }
+  return ~crc >>> 0;
+}
+
+// A hostile .srm: its header (CRC-valid) says every coefficient segment is
+// 4 GB long, so that it declares far more bytes than the file holds
+// (format/srm/README.md gives the header's fields).
+function hugeDeclaredCopy(bytes) {
+  const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.length);
+  const bodyEnd = 10 + view.getUint32(6, true);
+  let at = 10;
+  const varint = () => {
+    let value = 0;
+    for (let shift = 0; ; shift += 7) {
+      const byte = bytes[at++];
+      value += (byte & 127) * 2 ** shift;
+      if (byte < 128) return value;
+    }
+  };
+  varint(); varint();
+  at += 24;
+  const levels = bytes[at];
+  at += 2 + 4;
+  varint(); varint();
+  for (let l = 0; l <= levels; ++l) varint();
+  at += 4 + 4 + 1 + (bytes[4] >= 2 ? 1 : 0);
+  varint();
+  at += 4;
+  for (let l = 0; l < levels; ++l) { varint(); at += 4; }
+  const segments = varint();
+  const parts = [bytes.subarray(10, at)];
+  for (let s = 0; s < segments; ++s) {
+    const start = at;
+    const length = varint();
+    if (length === 0) {
+      parts.push(bytes.subarray(start, at));
+    } else {
+      parts.push(Uint8Array.of(0xff, 0xff, 0xff, 0xff, 0x0f), bytes.subarray(at, at + 2));
+      at += 2;
+    }
+  }
+  parts.push(bytes.subarray(at, bodyEnd));
+  const body = Buffer.concat(parts);
+  const head = Buffer.concat([bytes.subarray(0, 6), Buffer.alloc(4), body]);
+  head.writeUInt32LE(body.length, 6);
+  const crc = Buffer.alloc(4);
+  crc.writeUInt32LE(crc32(head));
+  return Buffer.concat([head, crc, bytes.subarray(bodyEnd + 4)]);
 }
 
 async function serve(files, options = {}) {
@@ -82,6 +138,8 @@ before(async () => {
   workDir = mkdtempSync(join(tmpdir(), 'srcodec-viewer-'));
   damaged = join(workDir, 'damaged.srm');
   writeFileSync(damaged, await damagedCopy(readFileSync(sample)));
+  hostile = join(workDir, 'hostile.srm');
+  writeFileSync(hostile, hugeDeclaredCopy(readFileSync(sample)));
   browser = await launchChromium();
 });
 
@@ -165,6 +223,20 @@ test('a damaged file: a visible message and the best mesh its bytes allow', asyn
   assert.match(await messageShown(page), /not all of the file decodes/);
   assert.ok(state.lastMesh && state.lastMesh.indices.length > 0, 'a mesh is still drawn');
   assert.ok(state.refinements.length > 0);
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+test('a header that declares gigabytes more than the file holds: a message and the mesh of the bytes that came', async () => {
+  const decoder = await createDecoder();
+  assert.ok(decoder.inspect(readFileSync(hostile)).declaredBytes > 2 ** 36, 'the crafted header is read');
+  const url = await serve([hostile], SLOW);
+  const { page, errors } = await openViewer(url('/viewer/?src=/file/hostile.srm'));
+  const state = await viewerState(page);
+  assert.equal(state.status, 'done');
+  // Too many to hold: decoded at once; or held (a large address space): the file is cut.
+  assert.match(await messageShown(page), /declares .* too many to hold|its header declares/);
+  assert.ok(state.lastMesh && state.lastMesh.indices.length > 0, 'a mesh is drawn');
   assert.deepEqual(errors, []);
   await page.close();
 });
