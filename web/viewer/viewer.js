@@ -62,7 +62,7 @@ controls.addEventListener('change', () => requestFrame());
 let needsRender = true;
 let frame = 0;
 let frameRequested = false;
-let queue = [];        // refinements waiting for a frame, oldest first
+const queue = [];       // refinements waiting for a frame, oldest first, one per level run
 let finalEvent = null;  // the stream's end, applied once the queue is drawn
 let worker = null;
 let prefixBusy = false;
@@ -90,11 +90,7 @@ function onFrame() {
   frameRequested = false;
   ++frame;
   if (queue.length > 0) {
-    // The oldest refinement's level, drawn as its newest queued refinement.
-    let last = 0;
-    while (last + 1 < queue.length && queue[last + 1].mesh.level === queue[0].mesh.level) ++last;
-    const refinement = queue[last];
-    queue = queue.slice(last + 1);
+    const refinement = queue.shift();
     showMesh(refinement.mesh);
     renderer.render(scene, camera);
     needsRender = false;
@@ -205,7 +201,7 @@ function showBytes(received, total, isPrefix = false) {
 function reset(name) {
   worker?.terminate();
   worker = null;
-  queue = [];
+  queue.length = 0;
   finalEvent = null;
   prefixBusy = false;
   prefixWanted = 0;
@@ -294,8 +290,12 @@ function onWorkerMessage(data) {
       if (data.error) say(`the bytes so far do not all decode: ${data.error}`, 'warning');
       break;
     case 'refine':
+      // A refinement of the level queued last replaces it: only the newest
+      // of a level is drawn, and a hidden tab (no frames) queues at most one
+      // mesh per level.
       ++state.received;
-      queue.push(data);
+      if (queue.length > 0 && queue.at(-1).mesh.level === data.mesh.level) queue[queue.length - 1] = data;
+      else queue.push(data);
       requestFrame();
       break;
     case 'done':
