@@ -29,13 +29,22 @@ async function open({ url, file, maxVertices: limit }) {
   let stage = 'load';
   let total = 0;
   try {
-    decoder = await createDecoder();
+    try {
+      decoder = await createDecoder();
+    } catch (error) {
+      throw new Error(`the decoder did not load: ${messageOf(error)}`);
+    }
     let stream;
     if (file) {
       stream = file.stream();
       total = file.size;
     } else {
-      const response = await fetch(url);
+      let response;
+      try {
+        response = await fetch(url);
+      } catch (error) {
+        throw new Error(`cannot load ${url}: ${messageOf(error)}`);
+      }
       if (!response.ok) throw new Error(`cannot load ${url}: HTTP ${response.status} ${response.statusText}`);
       total = Number(response.headers.get('Content-Length')) || 0;
       stream = response.body;
