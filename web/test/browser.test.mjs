@@ -172,6 +172,8 @@ test('streams coarse to fine and ends on the C++ decoder\'s mesh', async () => {
   const levels = state.info.levelInfo.length;
   assert.deepEqual([...new Set(drawn.map((r) => r.level))], [...Array(levels).keys()]);
   assert.equal(drawn.at(-1).bytesReceived, size);
+  // The camera frames the header's box from the start, and stays.
+  for (const r of drawn) assert.deepEqual(r.camera, drawn[0].camera, 'the camera does not move');
 
   // The last refinement is the C++ decode of the whole file, to the bit.
   const native = nativeDecode(sample);

@@ -50,10 +50,21 @@ async function open({ url, file, maxVertices: limit }) {
       stream = response.body;
     }
     stage = 'decode';
+    // The header goes out before the first refinement: the page frames the
+    // camera on it, and must not move it after the first mesh is drawn.
     let headerPosted = false;
+    const postHeader = () => {
+      if (headerPosted || progressive.info === null) return;
+      headerPosted = true;
+      total ||= progressive.info.declaredBytes;
+      postMessage({ type: 'header', info: progressive.info, total });
+    };
     progressive = new ProgressiveDecoder(decoder, {
       maxVertices,
-      onRefine: (mesh, event) => postMesh('refine', mesh, { bytesReceived: event.bytesReceived, milliseconds: event.milliseconds }),
+      onRefine: (mesh, event) => {
+        postHeader();
+        postMesh('refine', mesh, { bytesReceived: event.bytesReceived, milliseconds: event.milliseconds });
+      },
     });
     const reader = stream.getReader();
     for (;;) {
@@ -77,22 +88,14 @@ async function open({ url, file, maxVertices: limit }) {
         await decodeAtOnce(reader, chunk.value, total);
         return;
       }
-      if (!headerPosted && progressive.info !== null) {
-        headerPosted = true;
-        total ||= progressive.info.declaredBytes;
-        postMessage({ type: 'header', info: progressive.info, total });
-      }
+      postHeader();
       postMessage({ type: 'progress', bytesReceived: progressive.bytesReceived, total,
                     error: progressive.error && messageOf(progressive.error) });
     }
     const received = progressive.bytesReceived;
-    if (!headerPosted) {
-      if (received === 0) throw new Error('the file is empty');
-      progressive.end();  // a header cut short: throws the decoder's reason
-      postMessage({ type: 'header', info: progressive.info, total: total || progressive.info.declaredBytes });
-    } else {
-      progressive.end();
-    }
+    if (received === 0) throw new Error('the file is empty');
+    progressive.end();  // a header cut short, or no mesh at all: throws the decoder's reason
+    postHeader();
     const declared = progressive.info?.declaredBytes ?? received;
     postMessage({
       type: 'done', bytesReceived: received, total, declaredBytes: declared,

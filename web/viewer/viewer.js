@@ -13,7 +13,7 @@
 //   info, total, bytesReceived   the header (decoder.inspect) and the byte counts
 //   refinements  one per drawn refinement: { bytesReceived, bytesUsed, level,
 //                triangles, vertices, milliseconds, drawnAt (performance.now()),
-//                frame (animation frame number), and with snapshots=1
+//                frame (animation frame number), camera (its position), and with snapshots=1
 //                image (PNG data URL of the canvas) and coverage (the share
 //                of pixels not the background) }
 //   received     refinements that came from the decoder (drawn or collapsed)
@@ -130,7 +130,7 @@ function levelText(level) {
 function record({ mesh, bytesReceived, milliseconds }) {
   const entry = {
     bytesReceived, bytesUsed: mesh.bytesUsed, level: mesh.level, triangles: mesh.triangleCount,
-    vertices: mesh.vertexCount, milliseconds, drawnAt: performance.now(), frame,
+    vertices: mesh.vertexCount, milliseconds, drawnAt: performance.now(), frame, camera: camera.position.toArray(),
   };
   if (snapshots) {
     // Read right after rendering, while the drawing buffer still holds the frame.
