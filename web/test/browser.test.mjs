@@ -237,7 +237,7 @@ test('a header that declares gigabytes more than the file holds: a message and t
   const state = await viewerState(page);
   assert.equal(state.status, 'done');
   // Too many to hold: decoded at once; or held (a large address space): the file is cut.
-  assert.match(await messageShown(page), /declares .* too many to hold|its header declares/);
+  assert.match(await messageShown(page), /its header declares/);
   assert.ok(state.lastMesh && state.lastMesh.indices.length > 0, 'a mesh is drawn');
   assert.deepEqual(errors, []);
   await page.close();

@@ -15,7 +15,6 @@ import { createDecoder, ProgressiveDecoder } from '../dist/index.js';
 let decoder = null;
 let progressive = null;
 let maxVertices;
-let wholeBytes = null;  // the file, when it was decoded at once (decodeAtOnce)
 
 const messageOf = (error) => String(error?.message ?? error).replace(/^srcodec: /, '');
 
@@ -81,13 +80,7 @@ async function open({ url, file, maxVertices: limit }) {
       }
       stage = 'decode';
       if (chunk.done) break;
-      try {
-        progressive.push(chunk.value);  // throws on a header that is not an .srm's
-      } catch (error) {
-        if (!(error instanceof RangeError) || progressive.info === null) throw error;
-        await decodeAtOnce(reader, chunk.value, total);
-        return;
-      }
+      progressive.push(chunk.value);  // throws on a header that is not an .srm's
       postHeader();
       postMessage({ type: 'progress', bytesReceived: progressive.bytesReceived, total,
                     error: progressive.error && messageOf(progressive.error) });
@@ -106,47 +99,10 @@ async function open({ url, file, maxVertices: limit }) {
   }
 }
 
-// The ProgressiveDecoder sizes its buffer by the header's declared length:
-// one that declares more than an array can hold (hostile or damaged) makes
-// it throw. Then the rest of the stream is gathered here and decoded once.
-async function decodeAtOnce(reader, pending, total) {
-  const parts = [progressive.bytes.slice(), pending];
-  let length = parts[0].length + pending.length;
-  const declared = progressive.info.declaredBytes;
-  for (;;) {
-    let chunk;
-    try {
-      chunk = await reader.read();
-    } catch (cause) {
-      postMessage({ type: 'failed', stage: 'network', message: messageOf(cause), bytesReceived: length, total });
-      return;
-    }
-    if (chunk.done) break;
-    parts.push(chunk.value);
-    length += chunk.value.length;
-    postMessage({ type: 'progress', bytesReceived: length, total });
-  }
-  wholeBytes = new Uint8Array(length);
-  let at = 0;
-  for (const part of parts) {
-    wholeBytes.set(part, at);
-    at += part.length;
-  }
-  let error = `the header declares ${declared} bytes, too many to hold: decoded the ${length} that came at once`;
-  const started = performance.now();
-  try {
-    const mesh = decoder.decode(wholeBytes, { maxVertices });
-    postMesh('refine', mesh, { bytesReceived: length, milliseconds: performance.now() - started });
-  } catch (failure) {
-    error += `, which give no mesh: ${messageOf(failure)}`;
-  }
-  postMessage({ type: 'done', bytesReceived: length, total, declaredBytes: declared, complete: false, error });
-}
-
 function prefix({ maxBytes, id }) {
   const started = performance.now();
   try {
-    const mesh = decoder.decode(wholeBytes ?? progressive.bytes, { maxBytes, maxVertices });
+    const mesh = decoder.decode(progressive.bytes, { maxBytes, maxVertices });
     postMesh('prefixed', mesh, { id, maxBytes, milliseconds: performance.now() - started });
   } catch (error) {
     postMessage({ type: 'prefixed', id, maxBytes, error: messageOf(error) });
