@@ -2,7 +2,7 @@
 // files prepare.mjs made (each mesh's srcodec default file and the Draco file
 // of the nearest PSNR):
 //
-//   node web/bench/decode_bench.mjs --cache DIR [--runs 31] [--warmup 5]
+//   node web/bench/decode_bench.mjs --cache DIR [--runs 51] [--warmup 5]
 //       [--rate 1000000] [--json OUT] MESH...
 //
 // Measures, per mesh, side by side and alternated (each run decodes every
@@ -51,7 +51,7 @@ function usage(message) {
 }
 
 function parseArguments(argv) {
-  const options = { cache: null, runs: 31, warmup: 5, rate: 1e6, json: null, meshes: [] };
+  const options = { cache: null, runs: 51, warmup: 5, rate: 1e6, json: null, meshes: [] };
   const number = (name, text, min) => {
     const value = Number(text);
     if (!Number.isFinite(value) || value < min) usage(`${name} ${text}: use a number >= ${min}`);
@@ -371,6 +371,20 @@ for (const r of results) {
     `${f2(r.medianMs.srcodecFirst)} | ${f1(r.firstMesh.srcodecFirstMs)} | ${f1(r.firstMesh.srcodecWholeMs)} | ` +
     `${f1(r.firstMesh.dracoNpmWholeMs)} | **${f1(r.firstMesh.dracoNpmOverSrcodecFirst)}x** |`);
 }
+
+// The package's goals, each judged on every mesh given.
+const goals = {
+  throughput: results.every((r) => r.ratio.srcodecOverDracoNpm >= 1 && r.ratio.srcodecOverDracoThree >= 1),
+  size: sizes.srcodec.gzip9 < 100_000,
+  firstMesh: results.every((r) => r.firstMesh.dracoNpmOverSrcodecFirst >= 10),
+};
+const yes = (ok) => (ok ? 'met' : 'NOT met');
+out.push('', 'Goals:', '');
+out.push(`- decode throughput at least Draco's on every mesh: ${yes(goals.throughput)} (lowest ratio ` +
+  `${f2(Math.min(...results.map((r) => Math.min(r.ratio.srcodecOverDracoNpm, r.ratio.srcodecOverDracoThree))))}x)`);
+out.push(`- decoder .wasm + JavaScript under 100 kB gzip -9: ${yes(goals.size)} (${kB(sizes.srcodec.gzip9)} kB)`);
+out.push(`- first mesh at least 10x sooner than Draco's whole file at ${rate / 1e6} MB/s on every mesh: ` +
+  `${yes(goals.firstMesh)} (lowest ${f1(Math.min(...results.map((r) => r.firstMesh.dracoNpmOverSrcodecFirst)))}x)`);
 console.log(out.join('\n'));
 
 if (options.json) {
@@ -379,7 +393,7 @@ if (options.json) {
     loadAverageBefore: loadBefore, loadAverageAfter: loadAfter,
     runs, warmup: options.warmup, rateBytesPerSecond: rate,
     draco: { npm: packageVersion(dracoNpmRoot), three: packageVersion(threeRoot) },
-    sizes, meshes: results,
+    sizes, goals, meshes: results,
   };
   writeFileSync(options.json, `${JSON.stringify(report, null, 1)}\n`);
 }
