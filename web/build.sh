@@ -9,17 +9,7 @@ cd "$(dirname "$0")"
 packages=(cmake make emscripten libeigen3-dev)
 command -v node >/dev/null || packages+=(nodejs)
 command -v npm >/dev/null || packages+=(npm)
-missing=()
-for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if ((${#missing[@]})); then
-  echo "web/build.sh: installing ${missing[*]}" >&2
-  sudo=""
-  if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
-  $sudo apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
-fi
+../tools/install_packages.sh "${packages[@]}"
 
 # Debian's emscripten runs its JavaScript optimizer with the system's Node.js,
 # which finds Debian's acorn only here.

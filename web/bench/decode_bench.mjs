@@ -33,6 +33,7 @@ import { fileURLToPath } from 'node:url';
 import { brotliCompressSync, constants as zlibConstants, gzipSync } from 'node:zlib';
 
 import { createDecoder } from '../dist/index.js';
+import { parseObj } from '../tools/native.mjs';
 
 const web = fileURLToPath(new URL('../', import.meta.url));
 const require = createRequire(import.meta.url);
@@ -181,21 +182,11 @@ function loadMesh(cache, manifest, meshPath) {
   return { key, entry, srm: new Uint8Array(readFileSync(entry.srcodec.file)), drc: new Int8Array(readFileSync(entry.draco.file)) };
 }
 
-// The positions and triangles of the OBJ `srcodec decode` wrote (its numbers
-// keep every bit of the decoder's doubles), to check that the WebAssembly
-// decoder gives the mesh whose PSNR prepare.mjs measured.
+// The mesh of the OBJ `srcodec decode` wrote, in float32, to check that the
+// WebAssembly decoder gives the mesh whose PSNR prepare.mjs measured.
 function readObj(path) {
-  const positions = [];
-  const indices = [];
-  for (const line of readFileSync(path, 'utf8').split('\n')) {
-    if (line.startsWith('v ')) {
-      const [, x, y, z] = line.trim().split(/\s+/);
-      positions.push(Number(x), Number(y), Number(z));
-    } else if (line.startsWith('f ')) {
-      for (const corner of line.trim().split(/\s+/).slice(1)) indices.push(Number(corner.split('/')[0]) - 1);
-    }
-  }
-  return { positions: Float32Array.from(positions), indices: Uint32Array.from(indices) };
+  const { positions, indices } = parseObj(readFileSync(path, 'utf8'));
+  return { positions: Float32Array.from(positions), indices };
 }
 
 function sameArrays(a, b) {

@@ -12,7 +12,7 @@ import { fileURLToPath } from 'node:url';
 import { createDecoder } from '../dist/index.js';
 import { launchChromium } from '../tools/chromium.mjs';
 import { startServer } from '../tools/serve.mjs';
-import { nativeDecode, repository } from './native.mjs';
+import { nativeDecode, repository } from '../tools/native.mjs';
 
 // 128 bytes every 50 ms: the 2 kB sample arrives in about 16 chunks.
 const SLOW = { rate: 2560, chunkBytes: 128 };

@@ -9,7 +9,7 @@ import { test } from 'node:test';
 
 import { createDecoder } from '../dist/index.js';
 import { assertSameDecode, assertSameMesh, dataPath, nativeInfo, nativeRun, readData, scratch } from './helpers.mjs';
-import { parseObj } from './native.mjs';
+import { parseObj } from '../tools/native.mjs';
 
 const decoder = await createDecoder();
 

@@ -8,7 +8,7 @@ import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 
-import { parseObj, repository, srcodecBinary } from './native.mjs';
+import { parseObj, repository, srcodecBinary } from '../tools/native.mjs';
 
 export { repository };
 

@@ -9,7 +9,7 @@ import { after, before, test } from 'node:test';
 import { fileURLToPath } from 'node:url';
 
 import { startServer } from '../tools/serve.mjs';
-import { repository } from './native.mjs';
+import { repository } from '../tools/native.mjs';
 
 const sample = join(repository, 'tests/data/spot_default.srm');
 const serveScript = fileURLToPath(new URL('../tools/serve.mjs', import.meta.url));
@@ -57,8 +57,10 @@ test('types and lengths', async () => {
 });
 
 test('nothing outside web/ and the given file', async () => {
-  for (const path of ['/../README.md', '/..%2fREADME.md', '/%2e%2e%2fREADME.md', '/../../etc/passwd', '/%2e%2e/%2e%2e/etc/passwd', '/viewer/..%2f..%2fREADME.md',
-    '/file/../../README.md', '/file/other.srm', '/%00', '/nope']) {
+  // codec/ is a folder of the repository beside web/, not in it.
+  for (const path of ['/../codec/decoder_api.cpp', '/..%2fcodec%2fdecoder_api.cpp', '/%2e%2e%2fcodec/decoder_api.cpp',
+    '/../../etc/passwd', '/%2e%2e/%2e%2e/etc/passwd', '/viewer/..%2f..%2fcodec/decoder_api.cpp',
+    '/file/../../codec/decoder_api.cpp', '/file/other.srm', '/%00', '/nope']) {
     const response = await get(server.port, path);
     assert.equal(response.status, 404, path);
   }
