@@ -25,7 +25,7 @@ export class SRMLoader extends Loader<BufferGeometry> {
   setDecodeOptions(options: Omit<ProgressiveOptions, 'onRefine'>): this;
   load(url: string,
        onLoad?: (geometry: BufferGeometry) => void,
-       onProgress?: (event: { loaded: number; total: number; lengthComputable: boolean }) => void,
+       onProgress?: (event: ProgressEvent) => void,
        onError?: (error: Error & { geometry?: BufferGeometry | null }) => void,
        onRefine?: (geometry: BufferGeometry, event: RefineEvent) => void): void;
   parse(buffer: ArrayBuffer | Uint8Array, onLoad: (geometry: BufferGeometry) => void,

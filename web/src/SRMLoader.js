@@ -10,6 +10,13 @@ import { BufferAttribute, BufferGeometry, Loader } from 'three';
 import { createDecoder } from './decoder.js';
 import { ProgressiveDecoder, decodeStream } from './stream.js';
 
+// What three.js's loaders hand to onProgress; a plain object where there is
+// no ProgressEvent (outside browsers).
+function progressEvent(loaded, total) {
+  const init = { loaded, total, lengthComputable: total > 0 };
+  return typeof ProgressEvent === 'function' ? new ProgressEvent('progress', init) : init;
+}
+
 export class SRMLoader extends Loader {
   #decoder = null;
 
@@ -81,7 +88,7 @@ export class SRMLoader extends Loader {
         last.userData.srcodec.milliseconds = event.milliseconds;
         onRefine?.(last, event);
       },
-      onProgress: (loaded) => onProgress?.({ loaded, total, lengthComputable: total > 0 }),
+      onProgress: (loaded) => onProgress?.(progressEvent(loaded, total)),
     };
     let result;
     try {

@@ -123,9 +123,14 @@ export interface StreamResult {
   error: DecodeError | null;
 }
 
+export interface StreamOptions extends ProgressiveOptions {
+  /** After each chunk: the bytes received so far. */
+  onProgress?: (bytesReceived: number) => void;
+}
+
 /**
  * Rejects, after a stream error, with an Error whose `mesh` is the last refinement; on bytes that
  * are not an .srm file's, with the decoder's message, cancelling the stream.
  */
 export function decodeStream(decoder: Decoder, stream: ReadableStream<Uint8Array>,
-                             options?: ProgressiveOptions): Promise<StreamResult>;
+                             options?: StreamOptions): Promise<StreamResult>;
