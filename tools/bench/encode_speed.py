@@ -66,7 +66,8 @@ def resolve(rev):
 
 def describe(commit):
     """'c1beed993ee9 (2026-12-06) subject' of a commit, to say in the output which code a side is."""
-    return git("log", "-1", "--format=%h (%cs) %s", "--abbrev=12", commit)[:110]
+    text = git("log", "-1", "--format=%h (%cs) %s", "--abbrev=12", commit)
+    return text if len(text) <= 90 else text[:87] + "..."
 
 
 def tail(path, lines=30):
@@ -249,13 +250,19 @@ def table(records):
         runs = sum(1 for e in rec["runs"] if "ratio" in e)
         same = "yes" if o.get("sha256") and o.get("sha256") == n.get("sha256") else (
             "no" if o.get("sha256") and n.get("sha256") else "-")
+        ratio = f"{ratio:.3f}x ({runs} runs)" if ratio is not None else "-"
         lines.append(
             f"| {name} | {fmt(o.get('median_wall_s'), '.2f')} | {fmt(n.get('median_wall_s'), '.2f')} "
-            f"| {fmt(ratio, '.3f')}x ({runs} runs) | {fmt(o.get('median_cpu_s'), '.2f')} / "
+            f"| {ratio} | {fmt(o.get('median_cpu_s'), '.2f')} / "
             f"{fmt(n.get('median_cpu_s'), '.2f')} | {fmt(o.get('max_peak_mb'), '.0f')} / "
             f"{fmt(n.get('max_peak_mb'), '.0f')} | {fmt(o.get('bytes'), 'd')} / {fmt(n.get('bytes'), 'd')} "
             f"| {fmt(o.get('psnr'), '.2f')} / {fmt(n.get('psnr'), '.2f')} | {same} |")
-    return "\n".join(lines)
+    # What failed, under the table: the table only marks it
+    failures = [f"- {os.path.basename(rec['mesh'])}, {side} side, {what} failed: {rec['sides'][side][key]}"
+                for rec in records for side in ("old", "new")
+                for key, what in (("error", "encode"), ("measure_error", "measuring the file"))
+                if key in rec["sides"][side]]
+    return "\n".join(lines + ([""] + failures if failures else []))
 
 
 def summary(records):
@@ -320,6 +327,13 @@ def main(argv):
     new_commit = resolve(args.new) if args.new else None
 
     sides = {}
+    # A new side that needs no build is checked first: a wrong path should not wait for a build of minutes.
+    if args.new_binary:
+        if not os.access(args.new_binary, os.X_OK):
+            raise Error(f"--new-binary {args.new_binary}: not an executable file")
+        sides["new"] = {"binary": os.path.abspath(args.new_binary), "commit": None, "label": "the given binary"}
+    elif not new_commit:
+        sides["new"] = working_tree_side()
     binary, reused = build(old_commit, cache)
     sides["old"] = {"binary": binary, "commit": old_commit, "rev": args.old,
                     "label": f"{describe(old_commit)}, {'cached' if reused else 'built'} build"}
@@ -327,12 +341,7 @@ def main(argv):
         binary, reused = build(new_commit, cache)
         sides["new"] = {"binary": binary, "commit": new_commit, "rev": args.new,
                         "label": f"{describe(new_commit)}, {'cached' if reused else 'built'} build"}
-    elif args.new_binary:
-        if not os.access(args.new_binary, os.X_OK):
-            raise Error(f"--new-binary {args.new_binary}: not an executable file")
-        sides["new"] = {"binary": os.path.abspath(args.new_binary), "commit": None, "label": "the given binary"}
-    else:
-        sides["new"] = working_tree_side()
+    sides = {"old": sides["old"], "new": sides["new"]}
     for s in sides.values():
         s["note"] = binary_note(s["binary"])
 
@@ -348,8 +357,10 @@ def main(argv):
     extra = " ".join(args.extra) if args.extra else "(none)"
     print(f"- old: {sides['old']['label']}: {sides['old']['note']}")
     print(f"- new: {sides['new']['label']}: {sides['new']['note']}")
+    load = f"{min(loads):.2f}-{max(loads):.2f}" if loads else "-"
     print(f"- {args.runs} runs per mesh, alternated (run 1 old first); encode options: {extra}; "
-          f"{os.cpu_count()} cores, 1-min load before the encodes {min(loads):.2f}-{max(loads):.2f}" if loads else "")
+          f"{os.cpu_count()} cores, 1-minute load average before the encodes {load}")
+    print("- ratio: the median over the runs of old wall time / new wall time; peak MB: the largest over the runs")
     print(f"- PSNR: each side's file decoded by its own binary, measured by the new binary's `compare`")
     print()
     print(table(records))
