@@ -192,7 +192,8 @@ def bench_mesh(mesh, sides, runs, extra, compare_binary, scratch):
                 failed[side] = r["error"]
                 say(f"{PROG}: {name}: the {side} side failed to encode: {r['error']}")
         if "old" in entry and "new" in entry and entry["old"]["ok"] and entry["new"]["ok"]:
-            entry["ratio"] = entry["old"]["wall_s"] / entry["new"]["wall_s"]
+            # /usr/bin/time's wall clock has 10 ms steps: a floor keeps a tiny mesh from dividing by zero
+            entry["ratio"] = entry["old"]["wall_s"] / max(entry["new"]["wall_s"], 0.01)
             # CPU time moves less than wall time with other jobs on the machine; a second view of the ratio
             entry["cpu_ratio"] = entry["old"]["cpu_s"] / max(entry["new"]["cpu_s"], 0.01)
         record["runs"].append(entry)
@@ -211,7 +212,8 @@ def bench_mesh(mesh, sides, runs, extra, compare_binary, scratch):
                      median_cpu_s=statistics.median(r["cpu_s"] for r in done),
                      max_peak_mb=max(r["peak_mb"] for r in done),
                      bytes=done[0]["bytes"], sha256=done[0]["sha256"],
-                     deterministic=len(hashes) == 1, distinct_files=len(hashes))
+                     # one run shows nothing about determinism: None, not True
+                     deterministic=len(hashes) == 1 if len(done) > 1 else None, distinct_files=len(hashes))
             if len(hashes) > 1:
                 say(f"{PROG}: {name}: the {side} side is NOT deterministic: {len(hashes)} different files in "
                     f"{len(done)} runs (sizes {sorted({r['bytes'] for r in done})})")
