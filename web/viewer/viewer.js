@@ -33,7 +33,7 @@ const $ = (id) => document.getElementById(id);
 const ui = {
   canvas: $('view'), file: $('file'), bytes: $('bytes'), level: $('level'), triangles: $('triangles'),
   milliseconds: $('milliseconds'), progress: $('progress'), prefix: $('prefix'), prefixBytes: $('prefix-bytes'),
-  flat: $('flat'), open: $('open'), message: $('message'), drop: $('drop'),
+  flat: $('flat'), open: $('open'), message: $('message'), drop: $('drop'), panel: $('panel'),
 };
 
 const state = {};
@@ -73,6 +73,12 @@ function resize() {
   const height = ui.canvas.clientHeight;
   renderer.setSize(width, height, false);
   camera.aspect = width / Math.max(1, height);
+  // The panel covers the canvas's left side: where that leaves room, the
+  // view is centred on the rest (the projection's centre moves, the camera
+  // does not).
+  const covered = ui.panel.offsetLeft + ui.panel.offsetWidth;
+  const shift = width > 2.5 * covered ? covered / 2 : 0;
+  camera.setViewOffset(width, height, -shift, 0, width, height);
   camera.updateProjectionMatrix();
   requestFrame();
 }
