@@ -86,10 +86,18 @@ def cpu_seconds(pid):
         return None
 
 
-def run_stamped(cmd, time_file):
+class Stopped(RuntimeError):
+    """A run stopped at the time limit; `lines` are the stamped lines it printed."""
+
+    def __init__(self, message, lines, end, cpu, peak):
+        super().__init__(message)
+        self.lines, self.end, self.cpu, self.peak = lines, end, cpu, peak
+
+
+def run_stamped(cmd, time_file, limit=None):
     """Runs `cmd` under /usr/bin/time -v; returns (stdout, [(seconds, stderr line, peak MB since the last
     line, CPU seconds so far)], seconds to the end, peak MB after the last line). Stamps are seconds since
-    the start."""
+    the start. Past `limit` seconds the program is stopped (SIGTERM) and Stopped raised."""
     start = time.monotonic()
     p = subprocess.Popen(["/usr/bin/time", "-v", "-o", time_file] + cmd, stdout=subprocess.PIPE,
                          stderr=subprocess.PIPE)
@@ -98,9 +106,13 @@ def run_stamped(cmd, time_file):
     sel.register(p.stderr, selectors.EVENT_READ, "err")
     out, pending, lines = b"", b"", []
     peak, target, next_sample = 0.0, None, 0.0
-    open_streams = 2
+    open_streams, stopped, last_cpu = 2, False, 0.0
     while open_streams:
         now = time.monotonic()
+        if limit and not stopped and target and now - start > limit:
+            last_cpu = cpu_seconds(target) or last_cpu
+            os.kill(target, 15)
+            stopped = True
         if now >= next_sample:
             target = target or child_pid(p.pid)
             mb = rss_mb(target) if target else None
@@ -124,6 +136,8 @@ def run_stamped(cmd, time_file):
                 peak = 0.0
     p.wait()
     end = time.monotonic() - start
+    if stopped:
+        raise Stopped(f"stopped after {limit} s", lines, end, last_cpu, peak)
     if p.returncode != 0:
         last = lines[-1][1] if lines else f"exit {p.returncode}"
         raise RuntimeError(f"{' '.join(cmd)}: {last}")
@@ -196,6 +210,10 @@ def stages_of(lines, end, end_cpu, tail_peak, report, remesh_only):
                 remesh_cpu[1] = (cpu, stamp)
             peak, prev_stamp, prev_cpu = 0.0, stamp, cpu
             break
+    if report is None:  # stopped at the time limit: what ran after the last stage's line
+        ratio = (end_cpu - prev_cpu) / (end - prev_stamp) if end > prev_stamp else 1.0
+        add("(stopped: the stage after the last line)", end - prev_stamp, "stamps", peak, ratio)
+        return stages, {"stopped": True}
     remesh_seconds = report["remesh_seconds"] if not remesh_only else report["seconds"]
     if first_remesh is None:  # no remesh line (an input that is its own base mesh)
         first_remesh = max(0.0, (code[0] if code else end) - remesh_seconds - report.get("coding_seconds", 0.0))
@@ -225,21 +243,25 @@ def stages_of(lines, end, end_cpu, tail_peak, report, remesh_only):
                     "cuts": cut_count}
 
 
-def profile(srcodec, mesh, remesh_only, extra, tmp):
-    """One run: its stages, wall time, peak memory and the encoder's own figures."""
+def profile(srcodec, mesh, remesh_only, extra, tmp, limit=None):
+    """One run: its stages, wall time, peak memory and the encoder's own figures; a run stopped at `limit`
+    seconds has the stages it ended."""
     out = os.path.join(tmp, "out.ply" if remesh_only else "out.srm")
     cmd = [srcodec, "remesh" if remesh_only else "encode", mesh, "-o", out, "--json"] + extra
     time_file = os.path.join(tmp, "time.txt")
     load_before = os.getloadavg()
-    stdout, lines, end, tail_peak = run_stamped(cmd, time_file)
+    try:
+        stdout, lines, end, tail_peak = run_stamped(cmd, time_file, limit)
+        report = json.loads(stdout.strip().splitlines()[-1])
+    except Stopped as e:
+        lines, end, tail_peak, report = e.lines, e.end, e.peak, None
     load_after = os.getloadavg()
     wall, rss, cpu = parse_time_v(time_file)
-    report = json.loads(stdout.strip().splitlines()[-1])
     stages, totals = stages_of(lines, end, cpu, tail_peak, report, remesh_only)
     return {"mesh": mesh, "command": cmd, "wall_seconds": wall, "stamped_seconds": end, "cpu_seconds": cpu,
             "peak_rss_mb": rss, "load_before": load_before, "load_after": load_after, "totals": totals,
-            "input_vertices": report.get("input_vertices"), "stages": stages, "lines": [l for _, l, _, _ in lines],
-            "report": report}
+            "input_vertices": (report or {}).get("input_vertices"), "stages": stages, "lines": [l for _, l, _, _ in lines],
+            "report": report, "stopped_after": limit if report is None else None}
 
 
 def table(runs):
@@ -304,12 +326,13 @@ def main():
     ap.add_argument("--remesh", action="store_true", help="profile `srcodec remesh` instead of `srcodec encode`")
     ap.add_argument("--args", default="", help="more options for the srcodec command")
     ap.add_argument("--json", help="write every figure here")
+    ap.add_argument("--limit", type=float, help="stop a run after this many seconds (its stages so far are kept)")
     a = ap.parse_args()
     runs = []
     with tempfile.TemporaryDirectory() as tmp:
         for mesh in a.meshes:
             print(f"running {os.path.basename(mesh)} ...", file=sys.stderr, flush=True)
-            runs.append(profile(a.srcodec, mesh, a.remesh, shlex.split(a.args), tmp))
+            runs.append(profile(a.srcodec, mesh, a.remesh, shlex.split(a.args), tmp, a.limit))
     print(table(runs))
     print()
     print("Peak resident MB sampled while each stage ran:")
