@@ -42,7 +42,7 @@ FRAME = re.compile(r"^\s+[0-9a-f]+\s+(.*?)\s*$")  # perf script -F ...,ip,sym: a
 
 def short(sym):
     """A demangled symbol without its argument list and return type, to keep the table narrow."""
-    sym = re.sub(r"\+0x[0-9a-f]+$", "", sym)
+    sym = re.sub(r"\+0x[0-9a-f]+$", "", sym).replace("(anonymous namespace)::", "")
     depth, out = 0, []
     for ch in sym:  # drop template and argument lists
         if ch in "<(":
@@ -51,7 +51,7 @@ def short(sym):
             depth -= 1
         elif depth == 0:
             out.append(ch)
-    name = "".join(out).strip()
+    name = "".join(out).strip().replace(" const::", "::")  # a lambda in a const member function
     return name.split(" ")[-1] if " " in name else name
 
 
