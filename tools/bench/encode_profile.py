@@ -220,12 +220,24 @@ def stages_of(lines, end, end_cpu, tail_peak, report, remesh_only):
         add("read, clean, split components", first_remesh, "stamps", 0.0, 1.0)
     span = remesh_cpu[0] and remesh_cpu[1] and remesh_cpu[1][1] - remesh_cpu[0][1]
     remesh_ratio = (remesh_cpu[1][0] - remesh_cpu[0][0]) / span if span else 1.0
-    add("remesh: untimed rest", remesh_seconds - remesh_sum, "remesh total minus its stages", 0.0, remesh_ratio)
     if remesh_only:
-        tail = end - first_remesh - remesh_seconds
-        tail_ratio = (end_cpu - remesh_cpu[1][0]) / (end - remesh_cpu[1][1]) if remesh_cpu[1] else 1.0
-        add("measure levels, write", tail, "stamps", tail_peak, tail_ratio)
+        # `srcodec remesh` reports no line at the remesh's end: the untimed rest is the time between the first
+        # and the last remesh line that no stage covers; after the last line come the tangled places, the
+        # levels' error figures and the writing.
+        last = remesh_cpu[1][1] if remesh_cpu[1] else first_remesh
+        add("remesh: untimed rest", last - first_remesh - remesh_sum, "between its lines", 0.0, remesh_ratio)
+        tail_ratio = (end_cpu - remesh_cpu[1][0]) / (end - last) if remesh_cpu[1] and end > last else 1.0
+        add("measure levels, write", end - last, "stamps", tail_peak, tail_ratio)
         return stages, {"remesh": remesh_seconds}
+    if code:
+        # The remesh began coding + remesh seconds before the coding's line: what came before is the read and
+        # the cleaning; the component split belongs to the remesh's untimed rest.
+        read = stages[0]
+        read["stage"] = "read, clean"
+        ratio = read["cpu_seconds"] / read["seconds"] if read["seconds"] > 0 else 1.0
+        read["seconds"] = code[0] - report["coding_seconds"] - remesh_seconds
+        read["cpu_seconds"] = read["seconds"] * ratio
+    add("remesh: untimed rest", remesh_seconds - remesh_sum, "remesh total minus its stages", 0.0, remesh_ratio)
     # The memory sampled up to the coding's line (the remesh's tail, the coding) and up to the line after the
     # measuring (rate control, measuring) is charged to the coding and to the rate control.
     add("coding", report["coding_seconds"], "", code[2] if code else 0.0, code[3] if code else 1.0)
@@ -260,18 +272,14 @@ def profile(srcodec, mesh, remesh_only, extra, tmp, limit=None):
     stages, totals = stages_of(lines, end, cpu, tail_peak, report, remesh_only)
     return {"mesh": mesh, "command": cmd, "wall_seconds": wall, "stamped_seconds": end, "cpu_seconds": cpu,
             "peak_rss_mb": rss, "load_before": load_before, "load_after": load_after, "totals": totals,
-            "input_vertices": (report or {}).get("input_vertices"), "stages": stages, "lines": [l for _, l, _, _ in lines],
+            "input_vertices": (report or {}).get("input_vertices"), "stages": stages, "lines": [{"seconds": t, "line": l, "peak_mb": mb, "cpu_seconds": c} for t, l, mb, c in lines],
             "report": report, "stopped_after": limit if report is None else None}
 
 
 def table(runs):
     """Markdown: one row per stage (in the order first met); per mesh, the wall seconds and their share of the
     wall time, and the CPU seconds (estimated per window, stages_of) and their share of the CPU time."""
-    order = []
-    for r in runs:
-        for s in r["stages"]:
-            if s["stage"] not in order:
-                order.append(s["stage"])
+    order = stage_order(runs)
     names = [os.path.basename(r["mesh"]) for r in runs]
     rows = ["| stage | " + " | ".join(f"{n} wall s (%) | {n} CPU s (%) | {n} note" for n in names) + " |",
             "|---|" + "---:|---:|---|" * len(runs)]
@@ -297,6 +305,20 @@ def table(runs):
     return "\n".join(rows)
 
 
+def stage_order(runs):
+    """Every run's stages in one order: a stage one run has and the others lack goes after the stage before
+    it in that run."""
+    order = []
+    for r in runs:
+        prev = None
+        for st in r["stages"]:
+            name = st["stage"]
+            if name not in order:
+                order.insert(order.index(prev) + 1 if prev in order else len(order), name)
+            prev = name
+    return order
+
+
 def sum_wall(run):
     """The stages' wall seconds summed: close to the wall time when no time went unseen."""
     return sum(s["seconds"] for s in run["stages"])
@@ -305,11 +327,8 @@ def sum_wall(run):
 def memory_table(runs):
     """Markdown: the peak resident memory sampled while each stage ran (0: not sampled, a stage under 0.1 s)."""
     rows = ["| stage | " + " | ".join(os.path.basename(r["mesh"]) for r in runs) + " |", "|---|" + "---|" * len(runs)]
-    order = []
-    for r in runs:
-        for s in r["stages"]:
-            if s["stage"] not in order and s["peak_mb"] > 0:
-                order.append(s["stage"])
+    order = [name for name in stage_order(runs)
+             if any(st["stage"] == name and st["peak_mb"] > 0 for r in runs for st in r["stages"])]
     for stage in order:
         cells = []
         for r in runs:
