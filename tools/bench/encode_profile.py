@@ -15,7 +15,8 @@ Prints a Markdown table (stage x mesh: seconds and share of the wall time) and
 writes everything to a JSON file.
 
 usage: /usr/bin/python3 tools/bench/encode_profile.py [--srcodec BIN] [--remesh] [--args "OPTIONS"]
-                                                      [--json OUT.json] MESH [MESH ...]
+                                                      [--limit SECONDS] [--json OUT.json] MESH [MESH ...]
+       /usr/bin/python3 tools/bench/encode_profile.py --from-json A.json [B.json ...]   (tables of saved runs)
   SRCODEC in the environment also names the binary (default: build/tools/srcodec of this checkout).
   e.g. tools/bench/encode_profile.py --srcodec ../main/build/tools/srcodec --json /tmp/p.json \\
            ../shared/data/meshes/stanford-bunny.obj ../shared/data/meshes/igea.ply
@@ -225,7 +226,7 @@ def stages_of(lines, end, end_cpu, tail_peak, report, remesh_only):
         # and the last remesh line that no stage covers; after the last line come the tangled places, the
         # levels' error figures and the writing.
         last = remesh_cpu[1][1] if remesh_cpu[1] else first_remesh
-        add("remesh: untimed rest", last - first_remesh - remesh_sum, "between its lines", 0.0, remesh_ratio)
+        add("remesh: untimed rest", last - first_remesh - remesh_sum, "", 0.0, remesh_ratio)
         tail_ratio = (end_cpu - remesh_cpu[1][0]) / (end - last) if remesh_cpu[1] and end > last else 1.0
         add("measure levels, write", end - last, "stamps", tail_peak, tail_ratio)
         return stages, {"remesh": remesh_seconds}
@@ -237,7 +238,7 @@ def stages_of(lines, end, end_cpu, tail_peak, report, remesh_only):
         ratio = read["cpu_seconds"] / read["seconds"] if read["seconds"] > 0 else 1.0
         read["seconds"] = code[0] - report["coding_seconds"] - remesh_seconds
         read["cpu_seconds"] = read["seconds"] * ratio
-    add("remesh: untimed rest", remesh_seconds - remesh_sum, "remesh total minus its stages", 0.0, remesh_ratio)
+    add("remesh: untimed rest", remesh_seconds - remesh_sum, "", 0.0, remesh_ratio)  # the remesh total minus its stages
     # The memory sampled up to the coding's line (the remesh's tail, the coding) and up to the line after the
     # measuring (rate control, measuring) is charged to the coding and to the rate control.
     add("coding", report["coding_seconds"], "", code[2] if code else 0.0, code[3] if code else 1.0)
@@ -277,31 +278,39 @@ def profile(srcodec, mesh, remesh_only, extra, tmp, limit=None):
 
 
 def table(runs):
-    """Markdown: one row per stage (in the order first met); per mesh, the wall seconds and their share of the
-    wall time, and the CPU seconds (estimated per window, stages_of) and their share of the CPU time."""
+    """Markdown: one row per stage, one column per mesh: the wall seconds and their share of the wall time,
+    then the CPU seconds (estimated per window, stages_of) and their share of the CPU time."""
     order = stage_order(runs)
-    names = [os.path.basename(r["mesh"]) for r in runs]
-    rows = ["| stage | " + " | ".join(f"{n} wall s (%) | {n} CPU s (%) | {n} note" for n in names) + " |",
-            "|---|" + "---:|---:|---|" * len(runs)]
+    rows = ["| stage | " + " | ".join(os.path.basename(r["mesh"]) for r in runs) + " |",
+            "|---|" + "---:|" * len(runs)]
     for stage in order:
         cells = []
         for r in runs:
             hits = [s for s in r["stages"] if s["stage"] == stage]
-            if not hits:
-                cells += ["", "", ""]
-                continue
-            secs = sum(s["seconds"] for s in hits)
-            cpu = sum(s["cpu_seconds"] for s in hits)
-            note = "; ".join(s["note"] for s in hits if s["note"] and s["note"] != "stamps")
-            cells += [f"{secs:.2f} ({100 * secs / r['wall_seconds']:.1f}%)",
-                      f"{cpu:.2f} ({100 * cpu / r['cpu_seconds']:.1f}%)", note]
+            secs, cpu = sum(s["seconds"] for s in hits), sum(s["cpu_seconds"] for s in hits)
+            cells.append(f"{secs:.2f} s {100 * secs / r['wall_seconds']:.1f}% (CPU {cpu:.2f} s "
+                         f"{100 * cpu / r['cpu_seconds']:.1f}%)" if hits else "")
         rows.append(f"| {stage} | " + " | ".join(cells) + " |")
-    rows.append("| **total** (time -v: wall; user + sys) | " + " | ".join(
-        f"**{r['wall_seconds']:.2f}** | **{r['cpu_seconds']:.2f}** | sum of stages {sum_wall(r):.2f} wall"
-        for r in runs) + " |")
-    rows.append("| peak RSS | " + " | ".join(f"{r['peak_rss_mb']:.0f} MB | |" for r in runs) + " |")
+    rows.append("| **total** (time -v: wall; CPU = user + sys) | " +
+                " | ".join(f"**{r['wall_seconds']:.2f} s** (CPU {r['cpu_seconds']:.2f} s)" for r in runs) + " |")
+    rows.append("| stages summed (wall) | " + " | ".join(f"{sum_wall(r):.2f} s" for r in runs) + " |")
+    rows.append("| peak RSS | " + " | ".join(f"{r['peak_rss_mb']:.0f} MB" for r in runs) + " |")
     rows.append("| load average (1 min) before, after | " +
-                " | ".join(f"{r['load_before'][0]:.2f}, {r['load_after'][0]:.2f} | |" for r in runs) + " |")
+                " | ".join(f"{r['load_before'][0]:.2f}, {r['load_after'][0]:.2f}" for r in runs) + " |")
+    return "\n".join(rows)
+
+
+def figures_table(runs):
+    """Markdown: what each stage worked on (vertices, Lloyd steps, cuts), where the encoder says."""
+    order = [name for name in stage_order(runs)
+             if any(st["stage"] == name and st["note"] not in ("", "stamps") for r in runs for st in r["stages"])]
+    rows = ["| stage | " + " | ".join(os.path.basename(r["mesh"]) for r in runs) + " |", "|---|" + "---|" * len(runs)]
+    for stage in order:
+        cells = []
+        for r in runs:
+            notes = [st["note"] for st in r["stages"] if st["stage"] == stage and st["note"] != "stamps"]
+            cells.append("; ".join(notes))
+        rows.append(f"| {stage} | " + " | ".join(cells) + " |")
     return "\n".join(rows)
 
 
@@ -340,24 +349,35 @@ def memory_table(runs):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("meshes", nargs="+")
+    ap.add_argument("meshes", nargs="*")
     ap.add_argument("--srcodec", default=DEFAULT_SRCODEC)
     ap.add_argument("--remesh", action="store_true", help="profile `srcodec remesh` instead of `srcodec encode`")
     ap.add_argument("--args", default="", help="more options for the srcodec command")
     ap.add_argument("--json", help="write every figure here")
     ap.add_argument("--limit", type=float, help="stop a run after this many seconds (its stages so far are kept)")
+    ap.add_argument("--from-json", nargs="+", default=[], metavar="JSON",
+                    help="print the tables of runs saved with --json (before those of MESH ...)")
     a = ap.parse_args()
     runs = []
+    for path in a.from_json:
+        with open(path) as f:
+            runs += json.load(f)
     with tempfile.TemporaryDirectory() as tmp:
         for mesh in a.meshes:
             print(f"running {os.path.basename(mesh)} ...", file=sys.stderr, flush=True)
             runs.append(profile(a.srcodec, mesh, a.remesh, shlex.split(a.args), tmp, a.limit))
+    if not runs:
+        ap.error("give meshes or --from-json")
     print(table(runs))
+    print()
+    print("What the stages worked on:")
+    print()
+    print(figures_table(runs))
     print()
     print("Peak resident MB sampled while each stage ran:")
     print()
     print(memory_table(runs))
-    if a.json:
+    if a.json and a.meshes:
         with open(a.json, "w") as f:
             json.dump(runs, f, indent=1)
 
