@@ -238,7 +238,8 @@ def stages_of(lines, end, end_cpu, tail_peak, report, remesh_only):
         ratio = read["cpu_seconds"] / read["seconds"] if read["seconds"] > 0 else 1.0
         read["seconds"] = code[0] - report["coding_seconds"] - remesh_seconds
         read["cpu_seconds"] = read["seconds"] * ratio
-    add("remesh: untimed rest", remesh_seconds - remesh_sum, "", 0.0, remesh_ratio)  # the remesh total minus its stages
+    # The remesh's total minus its stages: the component split, the joins, the levels' bookkeeping.
+    add("remesh: untimed rest", remesh_seconds - remesh_sum, "", 0.0, remesh_ratio)
     # The memory sampled up to the coding's line (the remesh's tail, the coding) and up to the line after the
     # measuring (rate control, measuring) is charged to the coding and to the rate control.
     add("coding", report["coding_seconds"], "", code[2] if code else 0.0, code[3] if code else 1.0)
