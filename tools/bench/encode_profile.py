@@ -274,7 +274,8 @@ def profile(srcodec, mesh, remesh_only, extra, tmp, limit=None):
     stages, totals = stages_of(lines, end, cpu, tail_peak, report, remesh_only)
     return {"mesh": mesh, "command": cmd, "wall_seconds": wall, "stamped_seconds": end, "cpu_seconds": cpu,
             "peak_rss_mb": rss, "load_before": load_before, "load_after": load_after, "totals": totals,
-            "input_vertices": (report or {}).get("input_vertices"), "stages": stages, "lines": [{"seconds": t, "line": l, "peak_mb": mb, "cpu_seconds": c} for t, l, mb, c in lines],
+            "input_vertices": (report or {}).get("input_vertices"), "stages": stages,
+            "lines": [{"seconds": t, "line": l, "peak_mb": mb, "cpu_seconds": c} for t, l, mb, c in lines],
             "report": report, "stopped_after": limit if report is None else None}
 
 

@@ -9,7 +9,8 @@ function (self time) and to every function on its stack below the stage
 functions with their share of the stage.
 
 usage: perf record -e cpu-clock -F 250 --call-graph dwarf -o P.data -- srcodec encode MESH -o OUT.srm
-       perf script -i P.data --no-inline -F comm,tid,time,event,ip,sym | /usr/bin/python3 tools/bench/perf_stages.py [TOP]
+       perf script -i P.data --no-inline -F comm,tid,time,event,ip,sym \
+           | /usr/bin/python3 tools/bench/perf_stages.py [TOP]
 """
 import bisect
 import re
