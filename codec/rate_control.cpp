@@ -5,7 +5,6 @@
 
 #include "codec/srm_codec.h"
 #include "format/srm/srm_file.h"
-#include "remesh/surface_distance.h"
 
 namespace srcodec {
 
@@ -23,9 +22,13 @@ StatusOr<double> StreamCutter::psnr(uint64_t segment_bytes, size_t samples) cons
   SRCODEC_ASSIGN_OR_RETURN(std::vector<uint8_t> file, cut(segment_bytes));
   SRCODEC_ASSIGN_OR_RETURN(SrmFile f, parse_srm(file.data(), file.size()));
   SRCODEC_ASSIGN_OR_RETURN(DecodedSrm d, decode_srm(f));
-  SurfaceDistanceOptions o;
-  o.samples_per_surface = samples;
-  SRCODEC_ASSIGN_OR_RETURN(SurfaceDistance s, surface_distance(input_, d.mesh, o));
+  if (!reference_ || reference_->samples_per_surface() != samples) {
+    SurfaceDistanceOptions o;
+    o.samples_per_surface = samples;
+    SRCODEC_ASSIGN_OR_RETURN(SurfaceReference built, SurfaceReference::build(input_, o));
+    reference_ = std::move(built);
+  }
+  SRCODEC_ASSIGN_OR_RETURN(SurfaceDistance s, reference_->distance_to(d.mesh));
   return s.psnr;
 }
 

@@ -6,10 +6,12 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "format/mesh.h"
 #include "format/status.h"
+#include "remesh/surface_distance.h"
 
 namespace srcodec {
 
@@ -32,6 +34,10 @@ class StreamCutter {
   const TriangleMesh& input_;
   const std::vector<uint8_t>& full_;
   uint64_t segment_bytes_ = 0;
+  // The input's samples and search, built at the first cut measured and kept
+  // while the sample count stays the same: every cut is measured against the
+  // same input.
+  mutable std::optional<SurfaceReference> reference_;
 };
 
 // Samples per surface of the PSNR figures rate control decides on: fewer

@@ -162,7 +162,65 @@ DirectedDistance directed_distance(const std::vector<Eigen::Vector3d>& samples, 
   return d;
 }
 
+// One independent sample stream per surface, both derived from the seed.
+struct SampleSeeds {
+  uint64_t reference = 0, test = 0;
+};
+
+SampleSeeds sample_seeds(uint64_t seed) {
+  SplitMix64 seeds(seed);
+  SampleSeeds out;
+  out.reference = seeds.next();
+  out.test = seeds.next();
+  return out;
+}
+
+Status check_samples(const SurfaceDistanceOptions& options) {
+  if (options.samples_per_surface == 0) {
+    return invalid_argument("surface distance: samples_per_surface must be at least 1");
+  }
+  return ok_status();
+}
+
+// Both directions, the larger RMS and max, and the PSNR over the reference's diagonal.
+SurfaceDistance both_ways(const std::vector<Eigen::Vector3d>& ref_samples, const NearestSurfacePoint& test_search,
+                          const std::vector<Eigen::Vector3d>& test_samples, const NearestSurfacePoint& ref_search,
+                          double diag) {
+  SurfaceDistance out;
+  out.ref_to_test = directed_distance(ref_samples, test_search);
+  out.test_to_ref = directed_distance(test_samples, ref_search);
+  out.rms = std::max(out.ref_to_test.rms, out.test_to_ref.rms);
+  out.hausdorff = std::max(out.ref_to_test.max, out.test_to_ref.max);
+  out.diag = diag;
+  out.psnr = out.rms > 0 ? 20.0 * std::log10(out.diag / out.rms)
+                         : std::numeric_limits<double>::infinity();
+  return out;
+}
+
 }  // namespace
+
+StatusOr<SurfaceReference> SurfaceReference::build(const TriangleMesh& reference,
+                                                   const SurfaceDistanceOptions& options,
+                                                   const NearestSurfacePointBuilder& build_search) {
+  SRCODEC_RETURN_IF_ERROR(check_samples(options));
+  SRCODEC_ASSIGN_OR_RETURN(const Surface surface, make_surface(reference, "reference"));
+  const SampleSeeds seeds = sample_seeds(options.seed);
+  SurfaceReference out;
+  out.build_search_ = build_search;
+  out.samples_per_surface_ = options.samples_per_surface;
+  out.test_seed_ = seeds.test;
+  out.diag_ = bounding_box_diagonal(reference.positions);
+  out.samples_ = sample_surface(surface, options.samples_per_surface, seeds.reference);
+  out.search_ = build_search(reference, surface.faces);
+  return out;
+}
+
+StatusOr<SurfaceDistance> SurfaceReference::distance_to(const TriangleMesh& test) const {
+  SRCODEC_ASSIGN_OR_RETURN(const Surface surface, make_surface(test, "test"));
+  const std::vector<Eigen::Vector3d> test_samples = sample_surface(surface, samples_per_surface_, test_seed_);
+  const std::unique_ptr<NearestSurfacePoint> test_search = build_search_(test, surface.faces);
+  return both_ways(samples_, *test_search, test_samples, *search_, diag_);
+}
 
 std::unique_ptr<NearestSurfacePoint> triangle_tree_search(const TriangleMesh& mesh, const std::vector<uint32_t>& faces) {
   return std::make_unique<TriangleTreeSearch>(mesh, faces);
@@ -176,37 +234,20 @@ StatusOr<SurfaceDistance> surface_distance(const TriangleMesh& reference, const 
 StatusOr<SurfaceDistance> surface_distance(const TriangleMesh& reference, const TriangleMesh& test,
                                            const SurfaceDistanceOptions& options,
                                            const NearestSurfacePointBuilder& build_search) {
-  if (options.samples_per_surface == 0) {
-    return invalid_argument("surface distance: samples_per_surface must be at least 1");
-  }
+  SRCODEC_RETURN_IF_ERROR(check_samples(options));
   SRCODEC_ASSIGN_OR_RETURN(const Surface ref_surface, make_surface(reference, "reference"));
   SRCODEC_ASSIGN_OR_RETURN(const Surface test_surface, make_surface(test, "test"));
-
-  // One independent sample stream per surface, both derived from the seed.
-  SplitMix64 seeds(options.seed);
-  const uint64_t ref_seed = seeds.next();
-  const uint64_t test_seed = seeds.next();
-
-  const std::vector<Eigen::Vector3d> ref_samples =
-      sample_surface(ref_surface, options.samples_per_surface, ref_seed);
-  const std::vector<Eigen::Vector3d> test_samples =
-      sample_surface(test_surface, options.samples_per_surface, test_seed);
+  const SampleSeeds seeds = sample_seeds(options.seed);
+  const size_t n = options.samples_per_surface;
+  const std::vector<Eigen::Vector3d> ref_samples = sample_surface(ref_surface, n, seeds.reference);
+  const std::vector<Eigen::Vector3d> test_samples = sample_surface(test_surface, n, seeds.test);
 
   // Building a search is sequential, so the two are built at once, one per
   // core; the queries then use every core, one direction after the other.
   std::unique_ptr<NearestSurfacePoint> ref_search, test_search;
   tbb::parallel_invoke([&] { test_search = build_search(test, test_surface.faces); },
                        [&] { ref_search = build_search(reference, ref_surface.faces); });
-
-  SurfaceDistance out;
-  out.ref_to_test = directed_distance(ref_samples, *test_search);
-  out.test_to_ref = directed_distance(test_samples, *ref_search);
-  out.rms = std::max(out.ref_to_test.rms, out.test_to_ref.rms);
-  out.hausdorff = std::max(out.ref_to_test.max, out.test_to_ref.max);
-  out.diag = bounding_box_diagonal(reference.positions);
-  out.psnr = out.rms > 0 ? 20.0 * std::log10(out.diag / out.rms)
-                         : std::numeric_limits<double>::infinity();
-  return out;
+  return both_ways(ref_samples, *test_search, test_samples, *ref_search, bounding_box_diagonal(reference.positions));
 }
 
 }  // namespace srcodec

@@ -58,6 +58,28 @@ using NearestSurfacePointBuilder =
 // Our own search: an AABB tree over the triangles (remesh/triangle_tree.h).
 std::unique_ptr<NearestSurfacePoint> triangle_tree_search(const TriangleMesh& mesh, const std::vector<uint32_t>& faces);
 
+// The reference's half of the metric, built once: its samples and its
+// search, for measuring many test meshes against one reference (rate control
+// measures each cut of a stream against the input). distance_to(test) gives
+// the figures surface_distance(reference, test, options, build_search) gives.
+// Holds a reference to the mesh, which must outlive it.
+class SurfaceReference {
+ public:
+  static StatusOr<SurfaceReference> build(const TriangleMesh& reference, const SurfaceDistanceOptions& options,
+                                          const NearestSurfacePointBuilder& build_search = triangle_tree_search);
+  StatusOr<SurfaceDistance> distance_to(const TriangleMesh& test) const;
+  size_t samples_per_surface() const { return samples_per_surface_; }
+
+ private:
+  SurfaceReference() = default;
+  NearestSurfacePointBuilder build_search_;
+  size_t samples_per_surface_ = 0;
+  uint64_t test_seed_ = 0;
+  double diag_ = 0;
+  std::vector<Eigen::Vector3d> samples_;
+  std::unique_ptr<NearestSurfacePoint> search_;
+};
+
 // Zero-area triangles are ignored: they have no surface to sample or to be
 // near. Runs on every core TBB allows (tbb::global_control limits it); the
 // figures are bit-identical whatever the thread count.

@@ -224,6 +224,25 @@ TEST(SurfaceDistanceTest, SameSeedSameFiguresWhateverTheThreadCount) {
   EXPECT_NEAR(other->rms, first->rms, 0.02 * first->rms);
 }
 
+TEST(SurfaceDistanceTest, AReferenceBuiltOnceGivesTheSameFiguresForEveryTest) {
+  const TriangleMesh a = icosphere(3, 1.0);
+  const std::vector<TriangleMesh> tests = {translated(scaled(a, 1.01), {0.003, -0.002, 0.001}), icosphere(2, 0.98), a};
+  const SurfaceDistanceOptions options = options_with(kSamples / 4, 3);
+  auto reference = SurfaceReference::build(a, options);
+  ASSERT_TRUE(reference.ok()) << reference.status().message();
+  for (const TriangleMesh& test : tests) {
+    auto once = surface_distance(a, test, options);
+    auto kept = reference->distance_to(test);
+    ASSERT_TRUE(once.ok() && kept.ok());
+    expect_identical(once.value(), kept.value());
+  }
+  TriangleMesh no_surface = unit_square();
+  for (auto& t : no_surface.triangles) t = {t[0], t[0], t[1]};
+  EXPECT_EQ(reference->distance_to(no_surface).status().code(), StatusCode::kInvalidMesh);
+  EXPECT_EQ(SurfaceReference::build(no_surface, options).status().code(), StatusCode::kInvalidMesh);
+  EXPECT_EQ(SurfaceReference::build(a, options_with(0)).status().code(), StatusCode::kInvalidArgument);
+}
+
 TEST(SurfaceDistanceTest, ZeroAreaTrianglesAreIgnored) {
   // The square plus a degenerate sliver far away: the sliver has no surface,
   // so it neither draws samples nor attracts distances.
