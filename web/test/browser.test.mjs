@@ -236,7 +236,7 @@ test('a header that declares gigabytes more than the file holds: a message and t
   const { page, errors } = await openViewer(url('/viewer/?src=/file/hostile.srm'));
   const state = await viewerState(page);
   assert.equal(state.status, 'done');
-  // Too many to hold: decoded at once; or held (a large address space): the file is cut.
+  // The bytes end far before the size the header declares: a cut file.
   assert.match(await messageShown(page), /its header declares/);
   assert.ok(state.lastMesh && state.lastMesh.indices.length > 0, 'a mesh is drawn');
   assert.deepEqual(errors, []);
