@@ -12,6 +12,7 @@
 #include "remesh/geometry.h"
 #include "remesh/levels_to_move.h"
 #include "remesh/lbg_sites.h"
+#include "remesh/memory_budget.h"
 
 namespace srcodec {
 namespace {
@@ -159,6 +160,12 @@ class Remesher {
   StatusOr<SemiRegularMesh> whole_input_as_base(RemeshReport* report) const;
   // Components, their share of the base vertices and their oversampling.
   Status split_and_oversample();
+  // Per component: the oversampling steps for `levels` (`asked` >= 0: those).
+  std::vector<int> oversampling_steps(int levels, int asked) const;
+  uint64_t oversampled_vertices(const std::vector<int>& steps) const;
+  // The memory the oversampled input will take against what the machine
+  // can give (RemeshOptions::memory_limit), before any of it is taken.
+  Status check_memory(const std::vector<int>& steps) const;
   // The default base size, raised where the oversampled input holds more
   // vertices than planned.
   void raise_default_base();
@@ -244,13 +251,13 @@ Status Remesher::split_and_oversample() {
 
   // Oversampling per component: each gets the steps its own share needs, so
   // a small piece with few vertices is not starved by a large one.
+  const std::vector<int> steps = oversampling_steps(options_.levels, options_.oversample);
+  SRCODEC_RETURN_IF_ERROR(check_memory(steps));
   const auto start = std::chrono::steady_clock::now();
   for (size_t c = 0; c < parts_.size(); ++c) {
-    const int steps = options_.oversample >= 0 ? options_.oversample
-                                               : auto_steps(parts_[c].mesh, share_[c], options_.levels);
-    SRCODEC_ASSIGN_OR_RETURN(parts_[c].mesh, oversample(parts_[c].mesh, options_.scheme, steps));
-    rep_.component_oversample_steps.push_back(steps);
-    rep_.oversample_steps = std::max(rep_.oversample_steps, steps);
+    SRCODEC_ASSIGN_OR_RETURN(parts_[c].mesh, oversample(parts_[c].mesh, options_.scheme, steps[c]));
+    rep_.component_oversample_steps.push_back(steps[c]);
+    rep_.oversample_steps = std::max(rep_.oversample_steps, steps[c]);
     rep_.oversampled_vertices += parts_[c].mesh.positions.size();
   }
   rep_.seconds_oversample = seconds_since(start);
@@ -261,6 +268,43 @@ Status Remesher::split_and_oversample() {
     progress(p);
   }
   return ok_status();
+}
+
+std::vector<int> Remesher::oversampling_steps(int levels, int asked) const {
+  std::vector<int> steps(parts_.size());
+  for (size_t c = 0; c < parts_.size(); ++c)
+    steps[c] = asked >= 0 ? asked : auto_steps(parts_[c].mesh, share_[c], levels);
+  return steps;
+}
+
+uint64_t Remesher::oversampled_vertices(const std::vector<int>& steps) const {
+  uint64_t total = 0;
+  for (size_t c = 0; c < parts_.size(); ++c)
+    total += subdivided_vertices(parts_[c].mesh.positions.size(), parts_[c].mesh.triangles.size(), steps[c]);
+  return total;
+}
+
+Status Remesher::check_memory(const std::vector<int>& steps) const {
+  const uint64_t limit = options_.memory_limit > 0 ? options_.memory_limit : available_memory();
+  if (limit == 0) return ok_status();  // not known here: no check
+  const uint64_t vertices = oversampled_vertices(steps);
+  const uint64_t need = remesh_memory_estimate(vertices);
+  if (need <= limit) return ok_status();
+  std::string message = "remesh: " + std::to_string(options_.levels) + " levels over " + std::to_string(base_total_) +
+                        " base vertices need the input oversampled to about " + std::to_string(vertices) +
+                        " vertices, about " + memory_text(need) + " of memory, and " + memory_text(limit) +
+                        " is available: ask for";
+  // What would fit instead, each estimated the same way.
+  auto need_for = [this](int levels, int asked) {
+    return memory_text(remesh_memory_estimate(oversampled_vertices(oversampling_steps(levels, asked))));
+  };
+  if (options_.levels > 0) {
+    const int fewer = options_.levels - 1;
+    message += " fewer levels (--levels " + std::to_string(fewer) + ": about " + need_for(fewer, options_.oversample) +
+               ") or";
+  }
+  message += " less oversampling (--oversample 0: about " + need_for(options_.levels, 0) + ")";
+  return invalid_argument(message);
 }
 
 void Remesher::raise_default_base() {

@@ -58,6 +58,10 @@ struct RemeshOptions {
   int oversample = -1;     // Butterfly/Loop steps 0..3; -1 = auto, per component (remesher.cpp)
   OversampleScheme scheme = OversampleScheme::kButterfly;
   int max_lloyd_iterations = 10;  // per refinement level
+  // Bytes the remesh may take; 0: what the machine has available
+  // (remesh/memory_budget.h). An input whose oversampling would need more is
+  // refused before the work starts, with the estimate and what would fit.
+  uint64_t memory_limit = 0;
   // After the refinement, move the vertices above the base mesh off the
   // input's vertices, along their normals, to centre the finest level's
   // triangles on the input surface (remesh/fit.h; ours): a site on an input

@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "format/mesh_files/mesh_clean.h"
+#include "remesh/memory_budget.h"
 #include "format/mesh_files/mesh_io.h"
 #include "format/mesh_files/mesh_stats.h"
 #include "remesh/components.h"
@@ -710,6 +711,31 @@ TEST(Remesher, TooManyLevelsForTheInputSaysWhatWouldWork) {
   auto srm = remesh(sphere, small_options(4, 20, true));
   ASSERT_FALSE(srm.ok());
   EXPECT_NE(srm.status().message().find("oversample"), std::string::npos) << srm.status().message();
+}
+
+// A remesh that would take more memory than allowed is refused before the
+// oversampling, with the estimate and what would fit; within the limit the
+// same remesh runs.
+TEST(Remesher, TooLittleMemorySaysWhatWouldFit) {
+  const TriangleMesh sphere = test::icosphere(3, 1.0);  // 642 vertices
+  RemeshOptions o = small_options(2, 20, true);
+  o.oversample = 2;
+  // Two 1-to-4 steps: 642 + 1920 + 7680 = 10242 vertices.
+  EXPECT_EQ(subdivided_vertices(sphere.positions.size(), sphere.triangles.size(), 2), 10242u);
+  o.memory_limit = remesh_memory_estimate(10242) - 1;
+  RemeshReport report;
+  auto refused = remesh(sphere, o, &report);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.status().code(), StatusCode::kInvalidArgument);
+  const std::string& why = refused.status().message();
+  EXPECT_NE(why.find("10242 vertices"), std::string::npos) << why;
+  EXPECT_NE(why.find("--levels 1"), std::string::npos) << why;
+  EXPECT_NE(why.find("--oversample 0"), std::string::npos) << why;
+  EXPECT_EQ(report.oversampled_vertices, 0u);  // refused before any of it was made
+  o.memory_limit = remesh_memory_estimate(10242);
+  auto fits = remesh(sphere, o, &report);
+  ASSERT_TRUE(fits.ok()) << fits.status().message();
+  EXPECT_EQ(report.oversampled_vertices, 10242u);
 }
 
 // Vertices whose edges are on average more than `ratio` times as long as
