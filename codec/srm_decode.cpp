@@ -4,8 +4,8 @@
 // wavelet plan while the coefficients decode, and the coarse levels are
 // lifted while the finest level's coefficients are still being decoded.
 #include <algorithm>
-#include <cstdint>
 #include <atomic>
+#include <cstdint>
 #include <future>
 #include <optional>
 

@@ -3,7 +3,6 @@
 // estimate and what would fit, instead of ending in an out-of-memory kill.
 #pragma once
 
-#include <cstddef>
 #include <cstdint>
 #include <string>
 
