@@ -134,15 +134,118 @@ void assign_nearest(const Context& ctx, const std::vector<Eigen::Vector3d>& gene
 
 // ---- Surface connectivity of the cells ----------------------------------
 
-// Cells whose vertex set differs between two labelings (all when `before` is
-// empty): only those can have lost their connectivity.
-std::vector<char> changed_cells(size_t num_cells, const std::vector<int32_t>& before,
-                                const std::vector<int32_t>& after) {
-  std::vector<char> changed(num_cells, before.empty() ? 1 : 0);
-  if (before.empty()) return changed;
+// Per cell, the vertices it lost and gained between two labelings: cell k
+// lost lost[lost_at[k] .. lost_at[k + 1]) and gained likewise.
+struct CellChanges {
+  std::vector<int32_t> lost_at, lost, gained_at, gained;
+};
+
+CellChanges cell_changes(size_t num_cells, const std::vector<int32_t>& before, const std::vector<int32_t>& after) {
+  CellChanges c;
+  c.lost_at.assign(num_cells + 1, 0);
+  c.gained_at.assign(num_cells + 1, 0);
   for (size_t v = 0; v < after.size(); ++v)
-    if (before[v] != after[v]) changed[before[v]] = changed[after[v]] = 1;
-  return changed;
+    if (before[v] != after[v]) ++c.lost_at[before[v] + 1], ++c.gained_at[after[v] + 1];
+  for (size_t k = 0; k < num_cells; ++k) c.lost_at[k + 1] += c.lost_at[k], c.gained_at[k + 1] += c.gained_at[k];
+  c.lost.resize(c.lost_at[num_cells]);
+  c.gained.resize(c.gained_at[num_cells]);
+  std::vector<int32_t> lost_fill(c.lost_at.begin(), c.lost_at.end() - 1);
+  std::vector<int32_t> gained_fill(c.gained_at.begin(), c.gained_at.end() - 1);
+  for (size_t v = 0; v < after.size(); ++v)
+    if (before[v] != after[v]) {
+      c.lost[lost_fill[before[v]]++] = static_cast<int32_t>(v);
+      c.gained[gained_fill[after[v]]++] = static_cast<int32_t>(v);
+    }
+  return c;
+}
+
+// Whether the members of v's ring (`member`) are edge-connected among
+// themselves: then any path through v goes around it, and removing v keeps
+// the members' set connected. An empty ring proves nothing.
+template <class Member>
+bool ring_connected(const Adjacency& adj, int32_t v, Member member, std::vector<int32_t>& ring) {
+  ring.clear();
+  for (const int32_t* w = adj.begin(v); w != adj.end(v); ++w)
+    if (member(*w)) ring.push_back(*w);
+  if (ring.empty()) return false;
+  // Grow from ring[0]: ring[0 .. reached) are reached, the rest not yet.
+  size_t reached = 1;
+  for (size_t head = 0; head < reached; ++head)
+    for (size_t i = reached; i < ring.size(); ++i)
+      if (std::binary_search(adj.begin(ring[head]), adj.end(ring[head]), ring[i])) std::swap(ring[i], ring[reached++]);
+  return reached == ring.size();
+}
+
+// Whether cell k, connected under `before`, keeps what it did not lose
+// connected: its lost vertices are taken out one at a time, each only when
+// its ring in what is left stays connected (ring_connected). They are peeled
+// from the outside in (first those next to other cells, then the neighbours
+// of those taken out): taken in any other order, holes opened inside the
+// lost band split the rings of the vertices between them. False means "not
+// proven". `state` is all 0 on entry and on exit; task k touches it only at
+// vertices of cell k under `before`, so cells can be proven in parallel.
+bool kept_connected(const Adjacency& adj, const std::vector<int32_t>& before, const CellChanges& changes, int32_t k,
+                    std::vector<char>& state, std::vector<int32_t>& scratch, std::vector<int32_t>& queue) {
+  enum : char { kLeft = 0, kQueued = 1, kGone = 2 };
+  const int32_t* lost = changes.lost.data() + changes.lost_at[k];
+  const size_t count = changes.lost_at[k + 1] - changes.lost_at[k];
+  const auto left = [&](int32_t w) { return before[w] == k && state[w] != kGone; };
+  queue.clear();
+  for (size_t i = 0; i < count; ++i)
+    if (std::any_of(adj.begin(lost[i]), adj.end(lost[i]), [&](int32_t w) { return before[w] != k; })) {
+      state[lost[i]] = kQueued;
+      queue.push_back(lost[i]);
+    }
+  // Vertices refused wait at the back while others are taken out, until a
+  // whole turn of the queue takes none.
+  size_t gone = 0;
+  for (size_t head = 0, turn_end = queue.size(), gone_at_turn = 0; head < queue.size(); ++head) {
+    if (head == turn_end) {
+      if (gone == gone_at_turn) break;
+      turn_end = queue.size();
+      gone_at_turn = gone;
+    }
+    const int32_t v = queue[head];
+    if (!ring_connected(adj, v, left, scratch)) {
+      queue.push_back(v);
+      continue;
+    }
+    state[v] = kGone;
+    ++gone;
+    for (const int32_t* w = adj.begin(v); w != adj.end(v); ++w)
+      if (before[*w] == k && state[*w] == kLeft && std::binary_search(lost, lost + count, *w)) {
+        state[*w] = kQueued;
+        queue.push_back(*w);
+      }
+  }
+  for (size_t i = 0; i < count; ++i) state[lost[i]] = kLeft;
+  return gone == count;
+}
+
+// Marks in `orphan` the vertices cell k gained that are not edge-connected,
+// through other gained vertices, to what it kept (connected, with its site).
+void mark_unjoined_gains(const Adjacency& adj, const std::vector<int32_t>& before, const std::vector<int32_t>& after,
+                         const CellChanges& changes, int32_t k, std::vector<char>& orphan,
+                         std::vector<int32_t>& queue) {
+  const int32_t* gained = changes.gained.data() + changes.gained_at[k];
+  const size_t count = changes.gained_at[k + 1] - changes.gained_at[k];
+  // orphan[] starts at 1 on the gains and is cleared as they join: task k
+  // touches only vertices of cell k under `after`.
+  for (size_t i = 0; i < count; ++i) orphan[gained[i]] = 1;
+  queue.clear();
+  for (size_t i = 0; i < count; ++i) {
+    const int32_t g = gained[i];
+    if (std::any_of(adj.begin(g), adj.end(g), [&](int32_t w) { return before[w] == k && after[w] == k; })) {
+      orphan[g] = 0;
+      queue.push_back(g);
+    }
+  }
+  for (size_t head = 0; head < queue.size(); ++head)
+    for (const int32_t* w = adj.begin(queue[head]); w != adj.end(queue[head]); ++w)
+      if (orphan[*w] && after[*w] == k) {
+        orphan[*w] = 0;
+        queue.push_back(*w);
+      }
 }
 
 // Marks (in `reached`) the vertices of cell k edge-connected to its site;
@@ -220,30 +323,52 @@ int32_t majority_neighbour(const Adjacency& adj, const OrphanPieces& pieces, con
   return best;
 }
 
-// Euclidean nearest sites jump across thin parts (two close sheets): a cell
-// may own pieces not connected to its site. Each such orphan piece joins the
-// neighbouring cell it shares most edges with, counting only neighbours
-// already connected to their site, so every join keeps the receiving cell
-// connected; pieces walled in by other orphans wait for a later pass. Only
-// cells in `changed` are checked: the others were connected before. Returns
-// the number of vertices moved.
-size_t connect_cells(const Adjacency& adj, const std::vector<int32_t>& sites, const std::vector<char>& changed,
-                     std::vector<int32_t>& cell_of) {
-  const size_t n = cell_of.size();
+// Per vertex, whether it is cut off from its cell's site under `after`,
+// all cells connected under `before` (empty: nothing known). A changed cell
+// whose kept part is proven connected (kept_connected) can only have cut off
+// gained vertices; any other changed cell is walked from its site.
+std::vector<char> orphans(const Adjacency& adj, const std::vector<int32_t>& sites, const std::vector<int32_t>& before,
+                          const std::vector<int32_t>& after) {
+  const size_t n = after.size();
+  std::vector<char> orphan(n, 0), walk(sites.size(), before.empty() ? 1 : 0);
+  if (!before.empty()) {
+    const CellChanges changes = cell_changes(sites.size(), before, after);
+    std::vector<char> state(n, 0);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, sites.size(), 16), [&](const tbb::blocked_range<size_t>& r) {
+      std::vector<int32_t> scratch, pending;
+      for (size_t k = r.begin(); k != r.end(); ++k) {
+        const auto cell = static_cast<int32_t>(k);
+        if (!kept_connected(adj, before, changes, cell, state, scratch, pending)) {
+          walk[k] = 1;
+        } else {
+          mark_unjoined_gains(adj, before, after, changes, cell, orphan, pending);
+        }
+      }
+    });
+  }
+  if (std::find(walk.begin(), walk.end(), 1) == walk.end()) return orphan;
   std::vector<size_t> size(sites.size(), 0);
-  for (int32_t k : cell_of) ++size[k];
+  for (int32_t k : after) ++size[k];
   std::vector<char> reached(n, 0), broken(sites.size(), 0);
   // Cells touch disjoint vertices, so they can grow in parallel with the same result.
   tbb::parallel_for(tbb::blocked_range<size_t>(0, sites.size(), 16), [&](const tbb::blocked_range<size_t>& r) {
     std::vector<int32_t> queue;
     for (size_t k = r.begin(); k != r.end(); ++k)
-      if (changed[k])
-        broken[k] = grow_from_site(adj, cell_of, static_cast<int32_t>(k), sites[k], reached, queue) < size[k];
+      if (walk[k]) broken[k] = grow_from_site(adj, after, static_cast<int32_t>(k), sites[k], reached, queue) < size[k];
   });
-  if (std::find(broken.begin(), broken.end(), 1) == broken.end()) return 0;
+  for (size_t v = 0; v < n; ++v)
+    if (broken[after[v]] && !reached[v]) orphan[v] = 1;
+  return orphan;
+}
 
-  std::vector<char> orphan(n, 0);
-  for (size_t v = 0; v < n; ++v) orphan[v] = broken[cell_of[v]] && !reached[v];
+// Euclidean nearest sites jump across thin parts (two close sheets): a cell
+// may own pieces not connected to its site (`orphan`). Each such piece joins
+// the neighbouring cell it shares most edges with, counting only neighbours
+// already connected to their site, so every join keeps the receiving cell
+// connected; pieces walled in by other orphans wait for a later pass.
+// Returns the number of vertices moved.
+size_t connect_cells(const Adjacency& adj, const std::vector<char>& orphan, std::vector<int32_t>& cell_of) {
+  if (std::find(orphan.begin(), orphan.end(), 1) == orphan.end()) return 0;
   const OrphanPieces pieces = orphan_pieces(adj, cell_of, orphan);
   const size_t num_pieces = pieces.offsets.size() - 1;
   std::vector<char> settled(num_pieces, 0);
@@ -448,8 +573,7 @@ size_t split_round(const Context& ctx, size_t target, VoronoiCells& cells) {
 size_t assign_connected(const Context& ctx, const std::vector<Eigen::Vector3d>& generators,
                         const std::vector<int32_t>& before, VoronoiCells& cells) {
   assign_nearest(ctx, generators, cells.sites, cells.cell_of);
-  const std::vector<char> changed = changed_cells(cells.sites.size(), before, cells.cell_of);
-  return connect_cells(ctx.adjacency, cells.sites, changed, cells.cell_of);
+  return connect_cells(ctx.adjacency, orphans(ctx.adjacency, cells.sites, before, cells.cell_of), cells.cell_of);
 }
 
 // Lloyd relaxation with the cells' mass centroids as generators, until the

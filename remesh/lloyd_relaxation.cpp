@@ -105,7 +105,15 @@ bool Refiner::on_rim_arc(int32_t s, int32_t i) const {
   return loop_[i] < 0 || inside(i);
 }
 
-std::vector<int32_t> Refiner::reassign(int32_t level) const {
+std::vector<int32_t> Refiner::locate_points(int32_t level) const {
+  std::vector<int32_t> node(input_.positions.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, node.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i != r.end(); ++i) node[i] = h_.locate(param_[i], level);
+  });
+  return node;
+}
+
+std::vector<int32_t> Refiner::reassign(const std::vector<int32_t>& located) const {
   constexpr int kMaxWalk = 64;
   std::vector<int32_t> cell_of(points_.size(), -1);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, cell_of.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
@@ -115,7 +123,7 @@ std::vector<int32_t> Refiner::reassign(int32_t level) const {
         continue;
       }
       if (i >= input_.positions.size()) continue;  // a point off the input no site holds: in no cell (-1)
-      const int32_t node = h_.locate(param_[i], level);
+      const int32_t node = located[i];
       const Eigen::Vector3d& x = points_[i];
       int32_t best = -1;
       double best_d = std::numeric_limits<double>::infinity();
@@ -145,7 +153,10 @@ std::vector<int32_t> Refiner::reassign(int32_t level) const {
 }
 
 std::vector<int32_t> Refiner::relax(int32_t level, RefineLevelReport& lr) {
-  std::vector<int32_t> cell_of = reassign(level);  // run() built this level's mesh before placing vertices
+  // Sites move, the parameterization and the level's triangles do not: each
+  // point's triangle is found once for all the steps.
+  const std::vector<int32_t> located = locate_points(level);
+  std::vector<int32_t> cell_of = reassign(located);  // run() built this level's mesh before placing vertices
   const size_t sites = static_cast<size_t>(h_.vertex_count());
   for (int it = 0; it < options_.max_lloyd_iterations; ++it) {
     const Adjacency members = cells(cell_of, sites);
@@ -181,7 +192,7 @@ std::vector<int32_t> Refiner::relax(int32_t level, RefineLevelReport& lr) {
     }
     lr.moves += moved;
     lr.lloyd_iterations = it + 1;
-    cell_of = reassign(level);
+    cell_of = reassign(located);
     if (static_cast<double>(moved) < options_.min_moved_fraction * static_cast<double>(sites)) break;
   }
   const Adjacency members = cells(cell_of, sites);

@@ -151,7 +151,12 @@ class Refiner {
   // site whose own point is already out of order).
   bool on_rim_arc(int32_t s, int32_t i) const;
 
-  std::vector<int32_t> reassign(int32_t level) const;
+  // Per input point, the node of `level` its parameterization falls in.
+  std::vector<int32_t> locate_points(int32_t level) const;
+  // Every input point's cell (-1: none), from the sites around its located
+  // node (locate_points) and a walk to nearer ones.
+  std::vector<int32_t> reassign(const std::vector<int32_t>& located) const;
+  std::vector<int32_t> reassign(int32_t level) const { return reassign(locate_points(level)); }
 
   // Lloyd relaxation over the sites of all levels (§III-B). Returns the
   // final cells, which Eqs. 4-5 use to select the next level's splits.
