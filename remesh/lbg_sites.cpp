@@ -111,25 +111,94 @@ class NearestBelow {
   uint32_t index_;
 };
 
+// NearestBelow that also keeps the distance to the nearest other generator:
+// the search then prunes by that one, and still finds the same nearest.
+class NearestTwo {
+ public:
+  using DistanceType = double;
+  using IndexType = uint32_t;
+  NearestTwo(double dist, uint32_t index) : dist_(dist), index_(index) {}
+  double worstDist() const { return second_; }
+  bool full() const { return true; }
+  bool addPoint(double dist, uint32_t index) {
+    if (index == index_) return true;  // the nearest so far, met in the tree
+    if (dist < dist_) {
+      second_ = std::min(second_, dist_);
+      dist_ = dist;
+      index_ = index;
+    } else {
+      second_ = std::min(second_, dist);
+    }
+    return true;
+  }
+  uint32_t index() const { return index_; }
+  double second() const { return second_; }
+
+ private:
+  double dist_;
+  uint32_t index_;
+  double second_ = std::numeric_limits<double>::infinity();
+};
+
+// What one assignment leaves for the next (Hamerly, "Making k-means even
+// faster", 2010): per vertex a lower bound on its distance to every generator
+// but its own, and the generators it was measured against. A vertex nearer
+// its own generator than that bound, less how far any generator moved since,
+// keeps its cell without a search. Vertices whose label the assignment does
+// not give by distance (anchors, the connectivity repair) lose their bound.
+struct AssignBounds {
+  std::vector<double> lower;  // empty: no bounds yet
+  std::vector<Eigen::Vector3d> generators;
+  void forget(size_t v) { lower[v] = 0.0; }
+};
+
 // Labels each vertex with its nearest generator (Eq. 1). cell_of holds a
 // valid label per vertex on entry (the previous assignment) and the new one on
 // exit. Anchor k (a vertex) always stays in cell k, so no cell is empty. Each
 // vertex is independent, so the parallel loop gives the same result on any
-// number of threads.
+// number of threads. With `bounds` (from the assignment that left cell_of,
+// or empty), vertices the bounds settle are not searched; the labels are
+// the same either way.
 void assign_nearest(const Context& ctx, const std::vector<Eigen::Vector3d>& generators,
-                    const std::vector<int32_t>& anchors, std::vector<int32_t>& cell_of) {
+                    const std::vector<int32_t>& anchors, std::vector<int32_t>& cell_of, AssignBounds* bounds = nullptr) {
   const PointCloud cloud{generators};
   const PointTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(8));
+  double drift = std::numeric_limits<double>::infinity();  // how far any generator moved
+  if (bounds && bounds->generators.size() == generators.size() && !bounds->lower.empty()) {
+    drift = 0.0;
+    for (size_t k = 0; k < generators.size(); ++k)
+      drift = std::max(drift, (generators[k] - bounds->generators[k]).norm());
+  }
+  if (bounds && bounds->lower.empty()) bounds->lower.assign(cell_of.size(), 0.0);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, cell_of.size(), 2048), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t v = r.begin(); v != r.end(); ++v) {
       const Eigen::Vector3d& p = ctx.positions[v];
       const int32_t current = cell_of[v];
-      NearestBelow nearest((p - generators[current]).squaredNorm(), static_cast<uint32_t>(current));
-      if (nearest.worstDist() > 0) tree.findNeighbors(nearest, p.data(), nanoflann::SearchParams());
+      const double own = (p - generators[current]).squaredNorm();
+      if (!bounds) {
+        NearestBelow nearest(own, static_cast<uint32_t>(current));
+        if (nearest.worstDist() > 0) tree.findNeighbors(nearest, p.data(), nanoflann::SearchParams());
+        cell_of[v] = static_cast<int32_t>(nearest.index());
+        continue;
+      }
+      // Strictly inside the bound, with room for rounding: no other
+      // generator is as near, so the search would keep `current`.
+      const double lower = bounds->lower[v] - drift;
+      if (lower > 0.0 && std::sqrt(own) < lower * (1.0 - 1e-9)) {
+        bounds->lower[v] = lower;
+        continue;
+      }
+      NearestTwo nearest(own, static_cast<uint32_t>(current));
+      tree.findNeighbors(nearest, p.data(), nanoflann::SearchParams());
       cell_of[v] = static_cast<int32_t>(nearest.index());
+      bounds->lower[v] = std::sqrt(nearest.second());
     }
   });
-  for (size_t k = 0; k < anchors.size(); ++k) cell_of[anchors[k]] = static_cast<int32_t>(k);
+  for (size_t k = 0; k < anchors.size(); ++k) {
+    cell_of[anchors[k]] = static_cast<int32_t>(k);
+    if (bounds) bounds->forget(anchors[k]);
+  }
+  if (bounds) bounds->generators = generators;
 }
 
 // ---- Surface connectivity of the cells ----------------------------------
@@ -571,9 +640,16 @@ size_t split_round(const Context& ctx, size_t target, VoronoiCells& cells) {
 // labeling it starts from (empty: check every cell). Returns the vertices
 // moved by the connectivity repair.
 size_t assign_connected(const Context& ctx, const std::vector<Eigen::Vector3d>& generators,
-                        const std::vector<int32_t>& before, VoronoiCells& cells) {
-  assign_nearest(ctx, generators, cells.sites, cells.cell_of);
-  return connect_cells(ctx.adjacency, orphans(ctx.adjacency, cells.sites, before, cells.cell_of), cells.cell_of);
+                        const std::vector<int32_t>& before, VoronoiCells& cells, AssignBounds* bounds = nullptr) {
+  assign_nearest(ctx, generators, cells.sites, cells.cell_of, bounds);
+  if (!bounds) return connect_cells(ctx.adjacency, orphans(ctx.adjacency, cells.sites, before, cells.cell_of), cells.cell_of);
+  const std::vector<int32_t> nearest = cells.cell_of;
+  const size_t moved =
+      connect_cells(ctx.adjacency, orphans(ctx.adjacency, cells.sites, before, cells.cell_of), cells.cell_of);
+  if (moved > 0)
+    for (size_t v = 0; v < nearest.size(); ++v)
+      if (nearest[v] != cells.cell_of[v]) bounds->forget(v);
+  return moved;
 }
 
 // Lloyd relaxation with the cells' mass centroids as generators, until the
@@ -584,14 +660,15 @@ size_t assign_connected(const Context& ctx, const std::vector<Eigen::Vector3d>& 
 void relax(const Context& ctx, int max_iterations, double min_decrease, VoronoiCells& cells,
            LbgReport::Round& round) {
   // Split halves are not connected cells: check every cell the first time.
-  round.reassigned_vertices += assign_connected(ctx, site_positions(ctx, cells.sites), {}, cells);
+  AssignBounds bounds;
+  round.reassigned_vertices += assign_connected(ctx, site_positions(ctx, cells.sites), {}, cells, &bounds);
   std::vector<Eigen::Vector3d> centroids, next_centroids;
   double energy = update_centroids(ctx, cells, centroids);
   round.energy.push_back(energy);
   for (int it = 0; it < max_iterations; ++it) {
     VoronoiCells next = cells;
     snap_sites(ctx, centroids, next);  // the anchors that keep each cell non-empty and rooted
-    const size_t moved = assign_connected(ctx, centroids, cells.cell_of, next);
+    const size_t moved = assign_connected(ctx, centroids, cells.cell_of, next, &bounds);
     if (next.cell_of == cells.cell_of) break;  // a fixed point: the centroids would not move
     const double next_energy = update_centroids(ctx, next, next_centroids);
     round.energy.push_back(next_energy);
