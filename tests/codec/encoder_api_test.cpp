@@ -4,6 +4,7 @@
 #include <srcodec/srcodec.h>
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <cmath>
@@ -61,6 +62,18 @@ TEST(EncoderApi, DefaultsWriteWhatTheCommandWrites) {
   StatusOr<Decoded> decoded = decode(file->data(), file->size());
   ASSERT_TRUE(decoded.ok()) << decoded.status().message();
   EXPECT_EQ(decoded->level, 4);
+}
+
+// The encoder's parallel parts split work, never a sum or a choice: on one
+// thread it writes the file it writes on all of them (the pinned default,
+// made on two cores).
+TEST(EncoderApi, OneThreadWritesTheSameFile) {
+  const tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+  StatusOr<std::vector<uint8_t>> file = encode(sample_mesh(), EncodeOptions{});
+  ASSERT_TRUE(file.ok()) << file.status().message();
+  StatusOr<std::string> expected = read_file_bytes(test::source_path("tests/data/spot_default.srm"));
+  ASSERT_TRUE(expected.ok());
+  EXPECT_EQ(std::string(file->begin(), file->end()), *expected);
 }
 
 TEST(EncoderApi, KeepsTheRateAskedFor) {
