@@ -56,6 +56,7 @@ StatusOr<uint64_t> choose_cut(const StreamCutter& cutter, const Rate& rate, size
 const char* remesh_stage(RemeshStep step) {
   switch (step) {
     case RemeshStep::kOversampled: return "oversample";
+    case RemeshStep::kSites: return "sites";
     case RemeshStep::kBaseMesh: return "base mesh";
     case RemeshStep::kLevel: return "level";
     case RemeshStep::kFit: return "fit";

@@ -19,6 +19,7 @@ enum class RemeshStep {
   kBaseSizeRaised,         // vertices: the new default base size
   kFewerLevels,            // levels: those asked; vertices: what they need; report: oversampled_vertices
   kThresholdLevelByLevel,  // levels: those asked (too many for a uniform refinement first)
+  kSites,                  // report: curled_sites, tip_sites, seconds_sites; vertices: the sites (all components)
   kBaseMesh,               // report: base_vertices, curled_sites, tip_sites, promoted_vertices,
                            // seconds_sites, seconds_base; triangles: the base mesh's
   kLevel,                  // refine_level: the level built

@@ -175,6 +175,8 @@ class Remesher {
   StatusOr<SemiRegularMesh> with_fewer_levels(RemeshReport* report) const;
   // Per component: sites, then base mesh; both joined into one domain.
   Status build_base();
+  // Component c's sites and cells (LBG, curled cells, boundary tips).
+  StatusOr<VoronoiCells> sites_of(size_t c);
   // The paper's refinement (remesh/refine.h), then the fit.
   Status refine_levels();
   void fit();
@@ -362,34 +364,53 @@ StatusOr<SemiRegularMesh> Remesher::with_fewer_levels(RemeshReport* report) cons
   return remesh(mesh_, fewer, report);
 }
 
+StatusOr<VoronoiCells> Remesher::sites_of(size_t c) {
+  const TriangleMesh& part = parts_[c].mesh;
+  VoronoiCells cells;
+  if (share_[c] >= part.positions.size()) {
+    for (size_t v = 0; v < part.positions.size(); ++v) {
+      cells.sites.push_back(static_cast<int32_t>(v));
+      cells.cell_of.push_back(static_cast<int32_t>(v));
+    }
+    return cells;
+  }
+  LbgOptions lbg;
+  lbg.target_sites = share_[c];
+  lbg.min_flatness = kMinCellFlatness;
+  LbgReport lbg_report;
+  SRCODEC_ASSIGN_OR_RETURN(cells, lbg_sites(part, lbg, &lbg_report));
+  for (const auto& round : lbg_report.rounds) rep_.curled_sites += round.curled_splits;
+  BoundaryTipOptions tips;
+  tips.reach = boundary_tip_reach(part, share_[c]);
+  rep_.tip_sites += add_boundary_tip_sites(part, tips, &cells);
+  return cells;
+}
+
 Status Remesher::build_base() {
-  double sites_s = 0.0, base_s = 0.0;
+  // All components' sites first, then their base meshes: each step says when
+  // it is done (on a large input each takes minutes).
+  auto t0 = std::chrono::steady_clock::now();
+  std::vector<VoronoiCells> cells(parts_.size());
+  size_t sites = 0;
+  for (size_t c = 0; c < parts_.size(); ++c) {
+    SRCODEC_ASSIGN_OR_RETURN(cells[c], sites_of(c));
+    sites += cells[c].sites.size();
+  }
+  const double sites_s = seconds_since(t0);
+  rep_.seconds_sites = sites_s;
+  RemeshProgress done;
+  done.step = RemeshStep::kSites;
+  done.vertices = sites;
+  done.seconds = sites_s;
+  progress(done);
+
+  t0 = std::chrono::steady_clock::now();
   for (size_t c = 0; c < parts_.size(); ++c) {
     const TriangleMesh& part = parts_[c].mesh;
-    auto t0 = std::chrono::steady_clock::now();
-    VoronoiCells cells;
-    if (share_[c] >= part.positions.size()) {
-      for (size_t v = 0; v < part.positions.size(); ++v) {
-        cells.sites.push_back(static_cast<int32_t>(v));
-        cells.cell_of.push_back(static_cast<int32_t>(v));
-      }
-    } else {
-      LbgOptions lbg;
-      lbg.target_sites = share_[c];
-      lbg.min_flatness = kMinCellFlatness;
-      LbgReport lbg_report;
-      SRCODEC_ASSIGN_OR_RETURN(cells, lbg_sites(part, lbg, &lbg_report));
-      for (const auto& round : lbg_report.rounds) rep_.curled_sites += round.curled_splits;
-      BoundaryTipOptions tips;
-      tips.reach = boundary_tip_reach(part, share_[c]);
-      rep_.tip_sites += add_boundary_tip_sites(part, tips, &cells);
-    }
-    sites_s += seconds_since(t0);
-    t0 = std::chrono::steady_clock::now();
     BaseMeshReport base_report;
-    auto built = build_base_mesh(part, cells.sites, cells.cell_of, &base_report);
+    auto built = build_base_mesh(part, cells[c].sites, cells[c].cell_of, &base_report);
     if (!built.ok()) return built.status().with_context("component " + std::to_string(c));
-    base_s += seconds_since(t0);
+    cells[c] = VoronoiCells{};  // its memory back before the next component's collapses
     rep_.promoted_vertices += base_report.promoted_vertices;
 
     const int32_t input_offset = static_cast<int32_t>(input_.positions.size());
@@ -402,13 +423,13 @@ Status Remesher::build_base() {
       base_.param.push_back(p);
     }
   }
-  rep_.seconds_sites = sites_s;
+  const double base_s = seconds_since(t0);
   rep_.seconds_base = base_s;
   rep_.base_vertices = base_.mesh.positions.size();
   RemeshProgress p;
   p.step = RemeshStep::kBaseMesh;
   p.triangles = base_.mesh.triangles.size();
-  p.seconds = sites_s + base_s;
+  p.seconds = base_s;
   progress(p);
   return ok_status();
 }

@@ -40,7 +40,7 @@ struct Rate {
 };
 
 // A step of the encode that has just finished. The remesh (most of the
-// time) reports "oversample", "base mesh", "level" (once per level), "fit",
+// time) reports "oversample", "sites", "base mesh", "level" (once per level), "fit",
 // "coarsen" (with kMeasuredError), "untangle" (maybe several times) and
 // "slivers", then "remesh" when it is done; then "code" (the whole embedded
 // stream), "rate" (the cut chosen) and "measure" (the file's PSNR).

@@ -41,8 +41,8 @@ NUM = r"([-+0-9.eE]+)"
 # The remesher's progress lines (tools/srcodec/remesh_progress.cpp) that end a stage, with their figures.
 PATTERNS = [
     ("oversample", re.compile(r"^remesh: oversampled .*?: (\d+) vertices, " + NUM + " s$")),
-    ("base", re.compile(r"^remesh: base mesh: (\d+) vertices .*?, (\d+) triangles; sites " + NUM +
-                        " s, collapses " + NUM + " s$")),
+    ("sites", re.compile(r"^remesh: sites: (\d+) .*, " + NUM + " s$")),
+    ("base", re.compile(r"^remesh: base mesh: (\d+) vertices .*?, (\d+) triangles, " + NUM + " s$")),
     ("level", re.compile(r"^remesh: level (\d+): (\d+) vertices, (\d+) triangles, (\d+) Lloyd steps.*, " + NUM +
                          " s$")),
     ("splits_undone", re.compile(r"^remesh: (?:threshold|tolerance|threshold and tolerance): .*, " + NUM + " s$")),
@@ -182,18 +182,20 @@ def stages_of(lines, end, end_cpu, tail_peak, report, remesh_only):
             ratio = (cpu - prev_cpu) / (stamp - prev_stamp) if stamp > prev_stamp else 1.0
             if kind not in ("code", "cuts") and first_remesh is None:
                 # The first remesh line's own seconds started after the read, the cleaning and the split.
-                own = float(g[1]) if kind == "oversample" else (float(g[2]) + float(g[3]) if kind == "base"
-                                                                else float(g[-1]))
+                own = float(g[1]) if kind == "oversample" else float(g[-1])
                 first_remesh = stamp - own
                 add("read, clean, split components", first_remesh, "stamps", 0.0, ratio)
                 remesh_cpu[0] = (first_remesh * ratio, first_remesh)
             if kind == "oversample":
                 add("oversample", float(g[1]), f"{int(g[0])} vertices", peak, ratio)
                 remesh_sum += float(g[1])
+            elif kind == "sites":
+                add("LBG sites", float(g[1]), f"{int(g[0])} sites", peak, ratio)
+                remesh_sum += float(g[1])
             elif kind == "base":
-                add("LBG sites", float(g[2]), f"{int(g[0])} base vertices", peak, ratio)
-                add("base mesh (collapses)", float(g[3]), f"{int(g[1])} triangles", peak, ratio)
-                remesh_sum += float(g[2]) + float(g[3])
+                add("base mesh (collapses)", float(g[2]), f"{int(g[0])} base vertices, {int(g[1])} triangles", peak,
+                    ratio)
+                remesh_sum += float(g[2])
             elif kind == "level":
                 add(f"level {g[0]} (Lloyd)", float(g[4]), f"{int(g[1])} vertices, {g[3]} Lloyd steps", peak, ratio)
                 remesh_sum += float(g[4])

@@ -11,6 +11,14 @@ std::string n(size_t v) { return std::to_string(v); }
 std::string n(int v) { return std::to_string(v); }
 std::string n(double v) { return std::to_string(v); }
 
+}  // namespace
+
+std::string read_progress_line(size_t vertices, size_t triangles, double seconds) {
+  return "read: " + n(vertices) + " vertices, " + n(triangles) + " triangles (cleaned), " + n(seconds) + " s";
+}
+
+namespace {
+
 std::string level_line(const RefineLevelReport& lr) {
   std::string tangles;  // the goal is none; say so when some are left
   if (lr.folded_triangles + lr.coarse_folded_triangles > 0)
@@ -64,11 +72,12 @@ std::string remesh_progress_line(const RemeshProgress& p) {
     case RemeshStep::kThresholdLevelByLevel:
       return "threshold: the input is too sparse for " + n(p.levels) +
              " uniform levels; Eq. 5 decides level by level (the paper's order)";
+    case RemeshStep::kSites:
+      return "sites: " + n(p.vertices) + " (" + n(r->curled_sites) + " added in curled cells, " + n(r->tip_sites) +
+             " at the tips of narrow holes), " + n(r->seconds_sites) + " s";
     case RemeshStep::kBaseMesh:
-      return "base mesh: " + n(r->base_vertices) + " vertices (" + n(r->curled_sites) +
-             " sites added in curled cells, " + n(r->tip_sites) + " at the tips of narrow holes, " + n(r->promoted_vertices) +
-             " kept by the collapses), " + n(p.triangles) + " triangles; sites " + n(r->seconds_sites) +
-             " s, collapses " + n(r->seconds_base) + " s";
+      return "base mesh: " + n(r->base_vertices) + " vertices (" + n(r->promoted_vertices) +
+             " kept by the collapses), " + n(p.triangles) + " triangles, " + n(r->seconds_base) + " s";
     case RemeshStep::kLevel:
       return level_line(*p.refine_level);
     case RemeshStep::kThresholdStops:
