@@ -41,6 +41,8 @@ std::vector<int32_t> weld_map(const PolygonMesh& in, const std::vector<char>& re
 
 // Removes repeated consecutive corners; false if the face is degenerate.
 bool simplify_face(std::vector<int32_t>& face) {
+  // Most faces are triangles: no copy for them.
+  if (face.size() == 3) return face[0] != face[1] && face[1] != face[2] && face[2] != face[0];
   std::vector<int32_t> out;
   for (size_t i = 0; i < face.size(); ++i) {
     if (face[i] != face[(i + 1) % face.size()]) out.push_back(face[i]);
@@ -174,27 +176,42 @@ TriangleMesh clean_mesh(const PolygonMesh& in, CleanReport* report) {
   for (int32_t v : in.corners) referenced[v] = 1;
   const std::vector<int32_t> weld = weld_map(in, referenced, &r.welded_vertices);
 
-  // Welded faces, and every existing edge (diagonals must avoid them).
-  std::vector<std::vector<int32_t>> faces;
-  std::unordered_set<uint64_t> edges;
+  // Welded faces, one after the other: face f is corners[at[f] .. at[f + 1]).
+  std::vector<int32_t> corners, face;
+  std::vector<size_t> at{0};
+  corners.reserve(in.corners.size());
+  at.reserve(in.num_faces() + 1);
+  bool polygons = false;
   for (size_t f = 0; f < in.num_faces(); ++f) {
-    std::vector<int32_t> face(in.face(f), in.face(f) + in.face_size(f));
+    face.assign(in.face(f), in.face(f) + in.face_size(f));
     for (auto& v : face) v = weld[v];
     if (!simplify_face(face)) {
       ++r.degenerate_faces;
       continue;
     }
-    for (size_t i = 0; i < face.size(); ++i) edges.insert(edge_key(face[i], face[(i + 1) % face.size()]));
-    faces.push_back(std::move(face));
+    polygons = polygons || face.size() > 3;
+    corners.insert(corners.end(), face.begin(), face.end());
+    at.push_back(corners.size());
   }
+  // Every existing edge: diagonals and needle splits must avoid them. Built
+  // only when a polygon or a zero-area triangle asks (a large scan has
+  // neither, and tens of millions of edges).
+  std::unordered_set<uint64_t> edges;
+  const auto face_edges = [&] {
+    for (size_t f = 0; f + 1 < at.size(); ++f)
+      for (size_t i = at[f]; i < at[f + 1]; ++i)
+        edges.insert(edge_key(corners[i], corners[i + 1 < at[f + 1] ? i + 1 : at[f]]));
+  };
+  if (polygons) face_edges();
 
   std::vector<std::array<int32_t, 3>> triangles;
-  triangles.reserve(faces.size());
-  for (const auto& face : faces) {
-    if (face.size() == 3) {
-      triangles.push_back({face[0], face[1], face[2]});
+  triangles.reserve(at.size() - 1);
+  for (size_t f = 0; f + 1 < at.size(); ++f) {
+    if (at[f + 1] - at[f] == 3) {
+      triangles.push_back({corners[at[f]], corners[at[f] + 1], corners[at[f] + 2]});
     } else {
       ++r.polygons_triangulated;
+      face.assign(corners.begin() + at[f], corners.begin() + at[f + 1]);
       triangulate(face, in.positions, edges, triangles);
     }
   }
@@ -211,7 +228,10 @@ TriangleMesh clean_mesh(const PolygonMesh& in, CleanReport* report) {
       zero[i] = 1;
     }
   }
-  r.split_faces = close_needles(in.positions, edges, zero, triangles);
+  if (std::find(zero.begin(), zero.end(), 1) != zero.end()) {
+    if (!polygons) face_edges();
+    r.split_faces = close_needles(in.positions, edges, zero, triangles);
+  }
 
   // Duplicate triangles (either orientation) go; the first copy stays.
   std::vector<std::pair<std::array<int32_t, 3>, size_t>> keys;
