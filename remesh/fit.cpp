@@ -2,6 +2,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -53,13 +54,14 @@ std::vector<uint32_t> spatial_order(const std::vector<Eigen::Vector3d>& points) 
 // Each input sample's signed distance to its nearest triangle of `fine`,
 // shared among that triangle's corners by the barycentric coordinates of its
 // nearest point there: added to `sum` (weighted) and `mass` (the weights).
+// `nearest` searches `fine`.
 void add_sample_offsets(const std::vector<Eigen::Vector3d>& x, const std::vector<std::array<int32_t, 3>>& fine,
-                        const std::vector<Eigen::Vector3d>& samples, const std::vector<uint32_t>& search_order,
-                        std::vector<double>* sum, std::vector<double>* mass) {
+                        const NearestTriangle& nearest, const std::vector<Eigen::Vector3d>& samples,
+                        const std::vector<uint32_t>& search_order, std::vector<double>* sum,
+                        std::vector<double>* mass) {
   std::vector<int32_t> owner(samples.size());
   std::vector<Eigen::Vector3d> weight(samples.size());
   std::vector<double> offset_of(samples.size());
-  const NearestTriangle nearest(x, fine);
   // Each sample's nearest triangle, where on it, and its signed distance
   // from it.
   tbb::parallel_for(tbb::blocked_range<size_t>(0, samples.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
@@ -90,6 +92,40 @@ void add_sample_offsets(const std::vector<Eigen::Vector3d>& x, const std::vector
       (*mass)[v] += weight[i][c];
     }
   }
+}
+
+// The four points of a remesh triangle measured to the input: its centroid
+// and the points halfway between it and each corner (barycentric).
+constexpr double kAt[4][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3},
+                              {2.0 / 3, 1.0 / 6, 1.0 / 6},
+                              {1.0 / 6, 2.0 / 3, 1.0 / 6},
+                              {1.0 / 6, 1.0 / 6, 2.0 / 3}};
+
+// Each point's signed distance to the input along its triangle's normal (0
+// for a triangle without area, or no input triangle found). `input_triangle`:
+// each point's nearest input triangle, where the next search starts.
+void offsets_to_input(const std::vector<Eigen::Vector3d>& x, const std::vector<std::array<int32_t, 3>>& fine,
+                      const NearestTriangle& to_input, std::vector<std::array<double, 4>>* offsets,
+                      std::vector<std::array<int32_t, 4>>* input_triangles) {
+  std::vector<std::array<double, 4>>& offset_to_input = *offsets;
+  std::vector<std::array<int32_t, 4>>& input_triangle = *input_triangles;
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, fine.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t t = r.begin(); t != r.end(); ++t) {
+      const auto& tri = fine[t];
+      const Eigen::Vector3d normal = triangle_normal(x, tri);
+      const double len = normal.norm();
+      for (int k = 0; k < 4; ++k) {
+        offset_to_input[t][k] = 0.0;
+        if (!(len > 0.0)) continue;
+        const Eigen::Vector3d q = kAt[k][0] * x[tri[0]] + kAt[k][1] * x[tri[1]] + kAt[k][2] * x[tri[2]];
+        // Last iteration's, or in the first this triangle's previous point's.
+        const int32_t from = input_triangle[t][k] >= 0 || k == 0 ? input_triangle[t][k] : input_triangle[t][k - 1];
+        const NearestTriangle::Hit hit = to_input.exact(q, from);
+        input_triangle[t][k] = hit.triangle;
+        if (hit.triangle >= 0) offset_to_input[t][k] = (hit.point - q).dot(normal) / len;
+      }
+    }
+  });
 }
 
 // Undoes the moves around any triangle (of any level) that would turn by
@@ -178,34 +214,20 @@ FitReport fit_to_surface(const TriangleMesh& input, const TriangleMesh& sides,
     for (const auto& t : input.triangles) area += triangle_area(input.positions, t);
     density = area > 0.0 ? static_cast<double>(samples.size()) / area : 0.0;
   }
-  static constexpr double kAt[4][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3},
-                                       {2.0 / 3, 1.0 / 6, 1.0 / 6},
-                                       {1.0 / 6, 2.0 / 3, 1.0 / 6},
-                                       {1.0 / 6, 1.0 / 6, 2.0 / 3}};
   std::vector<std::array<double, 4>> offset_to_input(both_ways ? fine.size() : 0);
   // Each point's nearest input triangle, where the next search starts.
   std::vector<std::array<int32_t, 4>> input_triangle(both_ways ? fine.size() : 0, {-1, -1, -1, -1});
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
     std::vector<double> sum(n, 0.0), mass(n, 0.0);
-    add_sample_offsets(x, fine, samples, search_order, &sum, &mass);
+    // The search over the remesh is built (serially) while the remesh's
+    // points are measured to the input on the other core.
+    std::unique_ptr<const NearestTriangle> nearest;
+    tbb::parallel_invoke([&] { nearest = std::make_unique<const NearestTriangle>(x, fine); },
+                         [&] {
+                           if (both_ways) offsets_to_input(x, fine, *to_input, &offset_to_input, &input_triangle);
+                         });
+    add_sample_offsets(x, fine, *nearest, samples, search_order, &sum, &mass);
     if (both_ways) {
-      tbb::parallel_for(tbb::blocked_range<size_t>(0, fine.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t t = r.begin(); t != r.end(); ++t) {
-          const auto& tri = fine[t];
-          const Eigen::Vector3d normal = triangle_normal(x, tri);
-          const double len = normal.norm();
-          for (int k = 0; k < 4; ++k) {
-            offset_to_input[t][k] = 0.0;
-            if (!(len > 0.0)) continue;
-            const Eigen::Vector3d q = kAt[k][0] * x[tri[0]] + kAt[k][1] * x[tri[1]] + kAt[k][2] * x[tri[2]];
-            // Last iteration's, or in the first this triangle's previous point's.
-            const int32_t from = input_triangle[t][k] >= 0 || k == 0 ? input_triangle[t][k] : input_triangle[t][k - 1];
-            const NearestTriangle::Hit hit = to_input->exact(q, from);
-            input_triangle[t][k] = hit.triangle;
-            if (hit.triangle >= 0) offset_to_input[t][k] = (hit.point - q).dot(normal) / len;
-          }
-        }
-      });
       for (size_t t = 0; t < fine.size(); ++t) {
         const auto& tri = fine[t];
         const double w = options.remesh_weight * density * triangle_area(x, tri) / 4.0;
@@ -229,13 +251,15 @@ FitReport fit_to_surface(const TriangleMesh& input, const TriangleMesh& sides,
         edge_sum[t[c]] += len;
         edge_count[t[c]] += 1.0;
       }
-    for (size_t v = 0; v < n; ++v) {
-      if ((v < fixed.size() && fixed[v]) || !(mass[v] > 0.0) || normals[v].isZero()) continue;
-      const double reach = 0.25 * edge_sum[v] / edge_count[v];
-      x[v] += std::clamp(options.step * sum[v] / mass[v], -reach, reach) * normals[v];
-      side[v] = side_at(x[v]);
-      moved[v] = 1;
-    }
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t v = r.begin(); v != r.end(); ++v) {
+        if ((v < fixed.size() && fixed[v]) || !(mass[v] > 0.0) || normals[v].isZero()) continue;
+        const double reach = 0.25 * edge_sum[v] / edge_count[v];
+        x[v] += std::clamp(options.step * sum[v] / mass[v], -reach, reach) * normals[v];
+        side[v] = side_at(x[v]);
+        moved[v] = 1;
+      }
+    });
     report.refused += undo_tangling_moves(levels, fine, neighbours, before, side_before, &x, &side, &moved);
     report.moved = 0;
     double total = 0.0;
