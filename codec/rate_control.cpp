@@ -1,6 +1,7 @@
 #include "codec/rate_control.h"
 
 #include <tbb/parallel_invoke.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <array>
@@ -23,14 +24,16 @@ StatusOr<std::vector<uint8_t>> StreamCutter::cut(uint64_t segment_bytes) const {
 }
 
 StatusOr<std::shared_ptr<const SurfaceReference>> StreamCutter::reference(size_t samples) const {
-  // Nothing under this lock waits on TBB tasks: a thread waiting there could
-  // take up another cut's task that asks for the lock.
   const std::lock_guard<std::mutex> lock(reference_mutex_);
   if (!reference_ || reference_->samples_per_surface() != samples) {
     SurfaceDistanceOptions o;
     o.samples_per_surface = samples;
-    SRCODEC_ASSIGN_OR_RETURN(SurfaceReference built, SurfaceReference::build(input_, o));
-    reference_ = std::make_shared<const SurfaceReference>(std::move(built));
+    // Isolated: a thread waiting for the build's own tasks could otherwise
+    // take up another cut's task, which asks for this lock again.
+    StatusOr<SurfaceReference> built =
+        tbb::this_task_arena::isolate([&] { return SurfaceReference::build(input_, o); });
+    if (!built.ok()) return built.status();
+    reference_ = std::make_shared<const SurfaceReference>(std::move(built).value());
   }
   return reference_;
 }
