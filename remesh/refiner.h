@@ -236,6 +236,8 @@ class Refiner {
 
   // The folded triangles of the current level's mesh and of the coarser ones.
   std::vector<std::array<int32_t, 3>> folded_triangles() const;
+  // Per triangle of `triangles` (of some level's mesh), 1 when folded.
+  std::vector<char> folded_flags(const std::vector<std::array<int32_t, 3>>& triangles) const;
 
   // The resort for folds that no single site's move undoes (a site whose
   // neighbours are themselves out of place, often beside a jagged hole),
