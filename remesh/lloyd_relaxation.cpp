@@ -246,7 +246,9 @@ std::vector<int32_t> Refiner::relax(int32_t level, RefineLevelReport& lr) {
   untangle(level, lr);
   lr.spikes_mended = mend_spikes();
   count_tangles(lr);
-  return reassign(level);
+  // The repairs move sites, not the parameterization or the level's mesh:
+  // the points' nodes and their first sites still hold.
+  return reassign(located, first);
 }
 
 Adjacency Refiner::cells(const std::vector<int32_t>& cell_of, size_t sites) {
