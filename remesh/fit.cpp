@@ -144,6 +144,19 @@ size_t undo_tangling_moves(const std::vector<std::vector<std::array<int32_t, 3>>
   auto pleated = [&](const std::vector<Eigen::Vector3d>& p, int32_t t, int32_t u) {
     return pleat(triangle_normal(p, fine[t]), triangle_normal(p, fine[u]));
   };
+  // Whether the pair / the triangle asks for its moves undone.
+  auto pair_refuses = [&](const std::pair<int32_t, int32_t>& pair) {
+    const auto &a = fine[pair.first], &b = fine[pair.second];
+    if (!moved[a[0]] && !moved[a[1]] && !moved[a[2]] && !moved[b[0]] && !moved[b[1]] && !moved[b[2]]) return false;
+    return pleated(x, pair.first, pair.second) && !pleated(before, pair.first, pair.second);
+  };
+  auto triangle_refuses = [&](const std::array<int32_t, 3>& tri) {
+    if (!moved[tri[0]] && !moved[tri[1]] && !moved[tri[2]]) return false;
+    const Eigen::Vector3d was = triangle_normal(before, tri), now = triangle_normal(x, tri);
+    return !(now.dot(was) > 0.5 * now.norm() * was.norm() &&
+             (!folded(x, side, tri) || folded(before, side_before, tri)));
+  };
+  std::vector<char> undone(x.size(), 0);  // this pass
   auto undo = [&](const std::array<int32_t, 3>& tri) {
     bool any = false;
     for (int32_t v : tri)
@@ -151,26 +164,38 @@ size_t undo_tangling_moves(const std::vector<std::vector<std::array<int32_t, 3>>
         x[v] = before[v];
         side[v] = side_before[v];
         moved[v] = 0;
+        undone[v] = 1;
         ++refused;
         any = true;
       }
     return any;
   };
+  auto touched = [&](const std::array<int32_t, 3>& tri) { return undone[tri[0]] || undone[tri[1]] || undone[tri[2]]; };
+  // Each pass judges every pair and triangle in parallel on the positions
+  // it starts from, then undoes in order as a serial pass would: one with
+  // a corner undone earlier in the pass is judged again.
+  const auto judged = [](size_t count, const auto& refuses) {
+    std::vector<char> out(count);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 4096), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t i = r.begin(); i != r.end(); ++i) out[i] = refuses(i);
+    });
+    return out;
+  };
   for (bool changed = true; changed;) {
     changed = false;
-    for (const auto& [t, u] : neighbours) {
-      const auto &a = fine[t], &b = fine[u];
-      if (!moved[a[0]] && !moved[a[1]] && !moved[a[2]] && !moved[b[0]] && !moved[b[1]] && !moved[b[2]]) continue;
-      if (pleated(x, t, u) && !pleated(before, t, u)) changed |= undo(a) | undo(b);
+    std::fill(undone.begin(), undone.end(), 0);
+    const std::vector<char> pairs = judged(neighbours.size(), [&](size_t i) { return pair_refuses(neighbours[i]); });
+    std::vector<std::vector<char>> triangles(levels.size());
+    for (size_t k = 0; k < levels.size(); ++k)
+      triangles[k] = judged(levels[k].size(), [&](size_t i) { return triangle_refuses(levels[k][i]); });
+    for (size_t i = 0; i < neighbours.size(); ++i) {
+      const auto &a = fine[neighbours[i].first], &b = fine[neighbours[i].second];
+      if (touched(a) || touched(b) ? pair_refuses(neighbours[i]) : pairs[i]) changed |= undo(a) | undo(b);
     }
     for (size_t k = 0; k < levels.size(); ++k)
-      for (const auto& tri : levels[k]) {
-        if (!moved[tri[0]] && !moved[tri[1]] && !moved[tri[2]]) continue;
-        const Eigen::Vector3d was = triangle_normal(before, tri), now = triangle_normal(x, tri);
-        if (now.dot(was) > 0.5 * now.norm() * was.norm() &&
-            (!folded(x, side, tri) || folded(before, side_before, tri)))
-          continue;
-        changed |= undo(tri);
+      for (size_t i = 0; i < levels[k].size(); ++i) {
+        const auto& tri = levels[k][i];
+        if (touched(tri) ? triangle_refuses(tri) : triangles[k][i]) changed |= undo(tri);
       }
   }
   return refused;
@@ -188,14 +213,26 @@ FitReport fit_to_surface(const TriangleMesh& input, const TriangleMesh& sides,
   const auto& fine = levels.back();
   std::vector<Eigen::Vector3d>& x = *positions;
   const size_t n = x.size();
-  const std::vector<Eigen::Vector3d> samples = surface_samples(input, options.samples_per_vertex * n, options.seed);
-  // A corner's side of the surface: the normal of the vertex of `sides`
-  // nearest it (as the fold recount judges corners off the input).
-  const FoldCounter::Sides side_at(sides);
-  std::vector<Eigen::Vector3d> side = side_at.of(x);
-  // Neighbouring triangles of the finest level, for the pleats.
-  const std::vector<std::pair<int32_t, int32_t>> neighbours = neighbour_pairs(fine);
-  const std::vector<uint32_t> search_order = spatial_order(samples);
+  // Three mostly serial preparations, independent of each other, at once:
+  // the input's samples and their search order; a corner's side of the
+  // surface, the normal of the vertex of `sides` nearest it (as the fold
+  // recount judges corners off the input); the neighbouring triangles of
+  // the finest level, for the pleats.
+  std::vector<Eigen::Vector3d> samples, side;
+  std::vector<uint32_t> search_order;
+  std::unique_ptr<const FoldCounter::Sides> sides_search;
+  std::vector<std::pair<int32_t, int32_t>> neighbours;
+  tbb::parallel_invoke(
+      [&] {
+        samples = surface_samples(input, options.samples_per_vertex * n, options.seed);
+        search_order = spatial_order(samples);
+      },
+      [&] {
+        sides_search = std::make_unique<const FoldCounter::Sides>(sides);
+        side = sides_search->of(x);
+      },
+      [&] { neighbours = neighbour_pairs(fine); });
+  const FoldCounter::Sides& side_at = *sides_search;
   // The other way: four points of each triangle of the remesh (its centroid
   // and the points halfway between it and each corner), each measured to the
   // nearest point of the input exactly (the input's slivers can lie nearer
