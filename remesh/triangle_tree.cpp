@@ -78,22 +78,25 @@ TriangleTree::TriangleTree(const std::vector<Eigen::Vector3d>& positions,
 void TriangleTree::build(uint32_t node, uint32_t descendants, uint32_t begin, uint32_t end,
                          const std::vector<Eigen::Vector3d>& centroids,
                          const std::vector<std::pair<uint32_t, uint32_t>>& subtree_nodes) {
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  Eigen::Vector3d clo = lo, chi = hi;  // the box of the centroids, to choose the split axis
-  for (uint32_t i = begin; i < end; ++i) {
-    for (const Eigen::Vector3d& p : corners_[order_[i]]) {
-      lo = lo.cwiseMin(p);
-      hi = hi.cwiseMax(p);
-    }
-    clo = clo.cwiseMin(centroids[order_[i]]);
-    chi = chi.cwiseMax(centroids[order_[i]]);
-  }
-  nodes_[node].lo = lo;
-  nodes_[node].hi = hi;
   if (end - begin <= kLeafSize) {
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (uint32_t i = begin; i < end; ++i)
+      for (const Eigen::Vector3d& p : corners_[order_[i]]) {
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+      }
+    nodes_[node].lo = lo;
+    nodes_[node].hi = hi;
     nodes_[node].first = begin;
     nodes_[node].count = end - begin;
     return;
+  }
+  // The box of the centroids, to choose the split axis (the node's own box
+  // is its children's, once they are built).
+  Eigen::Vector3d clo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), chi = -clo;
+  for (uint32_t i = begin; i < end; ++i) {
+    clo = clo.cwiseMin(centroids[order_[i]]);
+    chi = chi.cwiseMax(centroids[order_[i]]);
   }
   int axis = 0;
   (chi - clo).maxCoeff(&axis);
@@ -114,6 +117,8 @@ void TriangleTree::build(uint32_t node, uint32_t descendants, uint32_t begin, ui
     first_half();
     second_half();
   }
+  nodes_[node].lo = nodes_[child].lo.cwiseMin(nodes_[child + 1].lo);
+  nodes_[node].hi = nodes_[child].hi.cwiseMax(nodes_[child + 1].hi);
 }
 
 double TriangleTree::box_squared(const Node& n, const Eigen::Vector3d& q) {
