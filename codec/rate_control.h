@@ -6,7 +6,8 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <optional>
+#include <memory>
+#include <mutex>
 #include <vector>
 
 #include "format/mesh.h"
@@ -19,6 +20,7 @@ namespace srcodec {
 // segments (truncate_srm), its size, and the PSNR against the input of the
 // mesh it decodes to. Holds references: `input` and `full` must outlive it.
 // A `full` that does not parse has no segment bytes, and its cuts fail.
+// Thread-safe: knee_of_stream measures two cuts at once.
 class StreamCutter {
  public:
   StreamCutter(const TriangleMesh& input, const std::vector<uint8_t>& full);
@@ -34,10 +36,13 @@ class StreamCutter {
   const TriangleMesh& input_;
   const std::vector<uint8_t>& full_;
   uint64_t segment_bytes_ = 0;
-  // The input's samples and search, built at the first cut measured and kept
-  // while the sample count stays the same: every cut is measured against the
-  // same input.
-  mutable std::optional<SurfaceReference> reference_;
+  // The input's samples and search for `samples`, built at the first cut
+  // measured and kept while the sample count stays the same: every cut is
+  // measured against the same input. Shared, so that a cut still measuring
+  // keeps the one it started with.
+  StatusOr<std::shared_ptr<const SurfaceReference>> reference(size_t samples) const;
+  mutable std::mutex reference_mutex_;
+  mutable std::shared_ptr<const SurfaceReference> reference_;
 };
 
 // Samples per surface of the PSNR figures rate control decides on: fewer

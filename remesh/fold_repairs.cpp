@@ -11,13 +11,23 @@
 namespace srcodec {
 
 void Refiner::count_tangles(RefineLevelReport& lr) const {
-  lr.folded_triangles = 0;
-  for (const auto& tri : triangles_) lr.folded_triangles += folded(tri, -1, -1);
+  const std::vector<char> fine = folded_flags(triangles_);
+  lr.folded_triangles = static_cast<size_t>(std::count(fine.begin(), fine.end(), 1));
   lr.folded_by_nearest_input = folded_by_nearest_input();
   lr.pleats = pleats().size();
   lr.coarse_folded_triangles = 0;
-  for (const auto& level_tris : coarse_triangles_)
-    for (const auto& tri : level_tris) lr.coarse_folded_triangles += folded(tri, -1, -1);
+  for (const auto& level_tris : coarse_triangles_) {
+    const std::vector<char> coarse = folded_flags(level_tris);
+    lr.coarse_folded_triangles += static_cast<size_t>(std::count(coarse.begin(), coarse.end(), 1));
+  }
+}
+
+std::vector<char> Refiner::folded_flags(const std::vector<std::array<int32_t, 3>>& triangles) const {
+  std::vector<char> out(triangles.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, triangles.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t t = r.begin(); t != r.end(); ++t) out[t] = folded(triangles[t], -1, -1) ? 1 : 0;
+  });
+  return out;
 }
 
 void Refiner::untangle(int32_t level, RefineLevelReport& lr) {
@@ -123,22 +133,34 @@ bool Refiner::pleated(int32_t t, int32_t u) const {
 }
 
 std::vector<std::pair<int32_t, int32_t>> Refiner::pleats() const {
-  std::vector<std::pair<int32_t, int32_t>> out;
-  for (int32_t t = 0; t < static_cast<int32_t>(triangles_.size()); ++t)
-    for (int c = 0; c < 3; ++c) {
-      const int32_t u = across(t, c);
-      if (u > t && pleated(t, u)) out.emplace_back(t, u);
+  // Each triangle's pleated later neighbours found in parallel, then listed
+  // in the order of a serial scan.
+  std::vector<std::array<int32_t, 3>> with(triangles_.size(), {-1, -1, -1});
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, triangles_.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i != r.end(); ++i) {
+      const auto t = static_cast<int32_t>(i);
+      for (int c = 0; c < 3; ++c) {
+        const int32_t u = across(t, c);
+        if (u > t && pleated(t, u)) with[i][c] = u;
+      }
     }
+  });
+  std::vector<std::pair<int32_t, int32_t>> out;
+  for (size_t t = 0; t < with.size(); ++t)
+    for (int32_t u : with[t])
+      if (u >= 0) out.emplace_back(static_cast<int32_t>(t), u);
   return out;
 }
 
 std::vector<std::array<int32_t, 3>> Refiner::folded_triangles() const {
   std::vector<std::array<int32_t, 3>> out;
-  for (const auto& tri : triangles_)
-    if (folded(tri, -1, -1)) out.push_back(tri);
-  for (const auto& level_tris : coarse_triangles_)
-    for (const auto& tri : level_tris)
-      if (folded(tri, -1, -1)) out.push_back(tri);
+  const auto add = [&](const std::vector<std::array<int32_t, 3>>& triangles) {
+    const std::vector<char> flags = folded_flags(triangles);
+    for (size_t t = 0; t < triangles.size(); ++t)
+      if (flags[t]) out.push_back(triangles[t]);
+  };
+  add(triangles_);
+  for (const auto& level_tris : coarse_triangles_) add(level_tris);
   return out;
 }
 
@@ -278,14 +300,19 @@ size_t Refiner::smooth_patch(const std::vector<int32_t>& patch) {
 
 size_t Refiner::folded_by_nearest_input() const {
   std::vector<Eigen::Vector3d> corner_normal(anchor_.size(), Eigen::Vector3d::Zero());
-  for (size_t s = 0; s < anchor_.size(); ++s) {
-    if (anchor_[s] >= 0) corner_normal[s] = normals_[nearest_input_vertex(anchor_[s])];
-  }
-  size_t count = 0;
-  for (const auto& t : triangles_)
-    count += srcodec::folded(srcodec::facing(points_[anchor_[t[0]]], points_[anchor_[t[1]]], points_[anchor_[t[2]]],
-                                             corner_normal[t[0]] + corner_normal[t[1]] + corner_normal[t[2]]));
-  return count;
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, anchor_.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t s = r.begin(); s != r.end(); ++s)
+      if (anchor_[s] >= 0) corner_normal[s] = normals_[nearest_input_vertex(anchor_[s])];
+  });
+  std::vector<char> flags(triangles_.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, triangles_.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i != r.end(); ++i) {
+      const auto& t = triangles_[i];
+      flags[i] = srcodec::folded(srcodec::facing(points_[anchor_[t[0]]], points_[anchor_[t[1]]], points_[anchor_[t[2]]],
+                                                 corner_normal[t[0]] + corner_normal[t[1]] + corner_normal[t[2]]));
+    }
+  });
+  return static_cast<size_t>(std::count(flags.begin(), flags.end(), 1));
 }
 
 }  // namespace srcodec

@@ -87,17 +87,28 @@ FoldCount count_by_sides(const std::vector<Eigen::Vector3d>& positions, const st
 FoldCount count_by_sides(const std::vector<Eigen::Vector3d>& positions, const std::vector<Eigen::Vector3d>& side,
                          const std::vector<std::array<int32_t, 3>>& triangles,
                          const std::vector<std::pair<int32_t, int32_t>>& neighbours, std::vector<char>* marked) {
+  // Each triangle and pair judged in parallel; counted and marked after.
+  std::vector<char> fold(triangles.size()), pleated(neighbours.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, triangles.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t t = r.begin(); t != r.end(); ++t) fold[t] = folded(positions, side, triangles[t]);
+  });
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, neighbours.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t k = r.begin(); k != r.end(); ++k) {
+      const auto [t, u] = neighbours[k];
+      pleated[k] = pleat(triangle_normal(positions, triangles[t]), triangle_normal(positions, triangles[u]));
+    }
+  });
   FoldCount count;
   if (marked) marked->assign(triangles.size(), 0);
   for (size_t t = 0; t < triangles.size(); ++t)
-    if (folded(positions, side, triangles[t])) {
+    if (fold[t]) {
       ++count.folded_by_nearest_input;
       if (marked) (*marked)[t] = 1;
     }
-  for (const auto& [t, u] : neighbours)
-    if (pleat(triangle_normal(positions, triangles[t]), triangle_normal(positions, triangles[u]))) {
+  for (size_t k = 0; k < neighbours.size(); ++k)
+    if (pleated[k]) {
       ++count.pleats;
-      if (marked) (*marked)[t] = (*marked)[u] = 1;
+      if (marked) (*marked)[neighbours[k].first] = (*marked)[neighbours[k].second] = 1;
     }
   return count;
 }

@@ -113,8 +113,51 @@ std::vector<int32_t> Refiner::locate_points(int32_t level) const {
   return node;
 }
 
-std::vector<int32_t> Refiner::reassign(const std::vector<int32_t>& located) const {
+Adjacency Refiner::first_sites(const std::vector<int32_t>& located) const {
+  const auto& nodes = h_.nodes();
+  std::vector<char> used(nodes.size(), 0);
+  for (int32_t node : located) used[node] = 1;
+  // Node by node (the same list twice: to count, then to fill).
+  const auto sites_of = [&](size_t node, std::vector<int32_t>* sites) {
+    sites->clear();
+    for (int32_t c : nodes[node].v) {
+      sites->push_back(c);
+      sites->insert(sites->end(), neighbors_.begin(c), neighbors_.end(c));
+    }
+    std::sort(sites->begin(), sites->end());
+    sites->erase(std::unique(sites->begin(), sites->end()), sites->end());
+  };
+  Adjacency out;
+  out.offsets.assign(nodes.size() + 1, 0);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, nodes.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+    std::vector<int32_t> sites;
+    for (size_t node = r.begin(); node != r.end(); ++node)
+      if (used[node]) {
+        sites_of(node, &sites);
+        out.offsets[node + 1] = static_cast<int32_t>(sites.size());
+      }
+  });
+  for (size_t node = 0; node < nodes.size(); ++node) out.offsets[node + 1] += out.offsets[node];
+  out.items.resize(static_cast<size_t>(out.offsets.back()));
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, nodes.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+    std::vector<int32_t> sites;
+    for (size_t node = r.begin(); node != r.end(); ++node)
+      if (used[node]) {
+        sites_of(node, &sites);
+        std::copy(sites.begin(), sites.end(), out.items.begin() + out.offsets[node]);
+      }
+  });
+  return out;
+}
+
+std::vector<int32_t> Refiner::reassign(const std::vector<int32_t>& located, const Adjacency& first_sites) const {
   constexpr int kMaxWalk = 64;
+  // The sites' places side by side: the searches read little else.
+  std::vector<Eigen::Vector3d> site_x(anchor_.size(), Eigen::Vector3d::Zero());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, site_x.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t s = r.begin(); s != r.end(); ++s)
+      if (anchor_[s] >= 0) site_x[s] = points_[anchor_[s]];
+  });
   std::vector<int32_t> cell_of(points_.size(), -1);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, cell_of.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t i = r.begin(); i != r.end(); ++i) {
@@ -127,21 +170,22 @@ std::vector<int32_t> Refiner::reassign(const std::vector<int32_t>& located) cons
       const Eigen::Vector3d& x = points_[i];
       int32_t best = -1;
       double best_d = std::numeric_limits<double>::infinity();
+      // The nearest, ties to the lower site: the same whatever the order.
       auto consider = [&](int32_t s) {
-        const double d = (points_[anchor_[s]] - x).squaredNorm();
+        const double d = (site_x[s] - x).squaredNorm();
         if (d < best_d || (d == best_d && s < best)) {
           best_d = d;
           best = s;
         }
       };
-      for (int32_t c : h_.nodes()[node].v) {
-        consider(c);
-        for (const int32_t* s = neighbors_.begin(c); s != neighbors_.end(c); ++s) consider(*s);
-      }
+      for (const int32_t* s = first_sites.begin(node); s != first_sites.end(node); ++s) consider(*s);
       // Then down the level's mesh, neighbour by neighbour, while a site
       // is nearer: the base domain locates the vertex on the right sheet,
-      // but its stretch goes stale as sites move.
-      for (int step = 0; step < kMaxWalk && best >= 0; ++step) {
+      // but its stretch goes stale as sites move. A corner's neighbours
+      // were all considered: the walk would stop at once.
+      const auto& corners = h_.nodes()[node].v;
+      const bool walk = std::find(corners.begin(), corners.end(), best) == corners.end();
+      for (int step = 0; walk && step < kMaxWalk && best >= 0; ++step) {
         const int32_t from = best;
         for (const int32_t* s = neighbors_.begin(from); s != neighbors_.end(from); ++s) consider(*s);
         if (best == from) break;
@@ -156,7 +200,8 @@ std::vector<int32_t> Refiner::relax(int32_t level, RefineLevelReport& lr) {
   // Sites move, the parameterization and the level's triangles do not: each
   // point's triangle is found once for all the steps.
   const std::vector<int32_t> located = locate_points(level);
-  std::vector<int32_t> cell_of = reassign(located);  // run() built this level's mesh before placing vertices
+  const Adjacency first = first_sites(located);        // run() built this level's mesh before placing vertices
+  std::vector<int32_t> cell_of = reassign(located, first);
   const size_t sites = static_cast<size_t>(h_.vertex_count());
   for (int it = 0; it < options_.max_lloyd_iterations; ++it) {
     const Adjacency members = cells(cell_of, sites);
@@ -192,7 +237,7 @@ std::vector<int32_t> Refiner::relax(int32_t level, RefineLevelReport& lr) {
     }
     lr.moves += moved;
     lr.lloyd_iterations = it + 1;
-    cell_of = reassign(located);
+    cell_of = reassign(located, first);
     if (static_cast<double>(moved) < options_.min_moved_fraction * static_cast<double>(sites)) break;
   }
   const Adjacency members = cells(cell_of, sites);
@@ -201,7 +246,9 @@ std::vector<int32_t> Refiner::relax(int32_t level, RefineLevelReport& lr) {
   untangle(level, lr);
   lr.spikes_mended = mend_spikes();
   count_tangles(lr);
-  return reassign(level);
+  // The repairs move sites, not the parameterization or the level's mesh:
+  // the points' nodes and their first sites still hold.
+  return reassign(located, first);
 }
 
 Adjacency Refiner::cells(const std::vector<int32_t>& cell_of, size_t sites) {

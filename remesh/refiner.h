@@ -153,10 +153,18 @@ class Refiner {
 
   // Per input point, the node of `level` its parameterization falls in.
   std::vector<int32_t> locate_points(int32_t level) const;
+  // Per node some point is located in (a row per node of the hierarchy):
+  // the sites its points consider first, its corners and their neighbours,
+  // each once. The level's mesh, not the sites' places: the Lloyd steps of
+  // a level share them.
+  Adjacency first_sites(const std::vector<int32_t>& located) const;
   // Every input point's cell (-1: none), from the sites around its located
-  // node (locate_points) and a walk to nearer ones.
-  std::vector<int32_t> reassign(const std::vector<int32_t>& located) const;
-  std::vector<int32_t> reassign(int32_t level) const { return reassign(locate_points(level)); }
+  // node (locate_points, first_sites) and a walk to nearer ones.
+  std::vector<int32_t> reassign(const std::vector<int32_t>& located, const Adjacency& first_sites) const;
+  std::vector<int32_t> reassign(int32_t level) const {
+    const std::vector<int32_t> located = locate_points(level);
+    return reassign(located, first_sites(located));
+  }
 
   // Lloyd relaxation over the sites of all levels (§III-B). Returns the
   // final cells, which Eqs. 4-5 use to select the next level's splits.
@@ -228,6 +236,8 @@ class Refiner {
 
   // The folded triangles of the current level's mesh and of the coarser ones.
   std::vector<std::array<int32_t, 3>> folded_triangles() const;
+  // Per triangle of `triangles` (of some level's mesh), 1 when folded.
+  std::vector<char> folded_flags(const std::vector<std::array<int32_t, 3>>& triangles) const;
 
   // The resort for folds that no single site's move undoes (a site whose
   // neighbours are themselves out of place, often beside a jagged hole),

@@ -217,8 +217,11 @@ StatusOr<SurfaceReference> SurfaceReference::build(const TriangleMesh& reference
 
 StatusOr<SurfaceDistance> SurfaceReference::distance_to(const TriangleMesh& test) const {
   SRCODEC_ASSIGN_OR_RETURN(const Surface surface, make_surface(test, "test"));
-  const std::vector<Eigen::Vector3d> test_samples = sample_surface(surface, samples_per_surface_, test_seed_);
-  const std::unique_ptr<NearestSurfacePoint> test_search = build_search_(test, surface.faces);
+  // Both serial (or mostly), so at once.
+  std::vector<Eigen::Vector3d> test_samples;
+  std::unique_ptr<NearestSurfacePoint> test_search;
+  tbb::parallel_invoke([&] { test_samples = sample_surface(surface, samples_per_surface_, test_seed_); },
+                       [&] { test_search = build_search_(test, surface.faces); });
   return both_ways(samples_, *test_search, test_samples, *search_, diag_);
 }
 

@@ -1,5 +1,7 @@
 #include "remesh/triangle_tree.h"
 
+#include <tbb/parallel_invoke.h>
+
 #include <algorithm>
 #include <numeric>
 #include <utility>
@@ -13,6 +15,29 @@ namespace {
 constexpr uint32_t kLeafSize = 4;
 // Deeper than a balanced tree over 2^32 triangles can be (two entries a level).
 constexpr int kMaxStack = 80;
+// Subtrees over fewer triangles are built on the thread that splits them.
+constexpr uint32_t kParallelBuild = 8192;
+
+// Per size of a subtree (in triangles) the halves split it into take, the
+// number of its nodes: a leaf is one, a split one more than its halves. A
+// balanced tree has at most two sizes a level. Sorted by size.
+std::vector<std::pair<uint32_t, uint32_t>> subtree_node_counts(uint32_t n) {
+  std::vector<std::pair<uint32_t, uint32_t>> counts;
+  const auto count = [&](auto&& self, uint32_t m) -> uint32_t {
+    for (const auto& [size, nodes] : counts)
+      if (size == m) return nodes;
+    const uint32_t nodes = m <= kLeafSize ? 1 : 1 + self(self, m / 2) + self(self, m - m / 2);
+    counts.emplace_back(m, nodes);
+    return nodes;
+  };
+  count(count, n);
+  std::sort(counts.begin(), counts.end());
+  return counts;
+}
+
+uint32_t nodes_over(const std::vector<std::pair<uint32_t, uint32_t>>& counts, uint32_t m) {
+  return std::lower_bound(counts.begin(), counts.end(), std::make_pair(m, uint32_t{0}))->second;
+}
 
 }  // namespace
 
@@ -35,9 +60,9 @@ TriangleTree::TriangleTree(const std::vector<Eigen::Vector3d>& positions,
   face_ = std::move(face);
   order_.resize(n);
   std::iota(order_.begin(), order_.end(), 0u);
-  nodes_.reserve(2 * (n / kLeafSize + 1));
-  nodes_.emplace_back();
-  build(0, 0, static_cast<uint32_t>(n), centroids);
+  const std::vector<std::pair<uint32_t, uint32_t>> counts = subtree_node_counts(static_cast<uint32_t>(n));
+  nodes_.resize(nodes_over(counts, static_cast<uint32_t>(n)));
+  build(0, 1, 0, static_cast<uint32_t>(n), centroids, counts);
   std::vector<std::array<Eigen::Vector3d, 3>> sorted_corners(n);
   std::vector<int32_t> sorted_face(n);
   for (size_t i = 0; i < n; ++i) {
@@ -50,23 +75,28 @@ TriangleTree::TriangleTree(const std::vector<Eigen::Vector3d>& positions,
   order_.shrink_to_fit();
 }
 
-void TriangleTree::build(uint32_t node, uint32_t begin, uint32_t end, const std::vector<Eigen::Vector3d>& centroids) {
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  Eigen::Vector3d clo = lo, chi = hi;  // the box of the centroids, to choose the split axis
-  for (uint32_t i = begin; i < end; ++i) {
-    for (const Eigen::Vector3d& p : corners_[order_[i]]) {
-      lo = lo.cwiseMin(p);
-      hi = hi.cwiseMax(p);
-    }
-    clo = clo.cwiseMin(centroids[order_[i]]);
-    chi = chi.cwiseMax(centroids[order_[i]]);
-  }
-  nodes_[node].lo = lo;
-  nodes_[node].hi = hi;
+void TriangleTree::build(uint32_t node, uint32_t descendants, uint32_t begin, uint32_t end,
+                         const std::vector<Eigen::Vector3d>& centroids,
+                         const std::vector<std::pair<uint32_t, uint32_t>>& subtree_nodes) {
   if (end - begin <= kLeafSize) {
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (uint32_t i = begin; i < end; ++i)
+      for (const Eigen::Vector3d& p : corners_[order_[i]]) {
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+      }
+    nodes_[node].lo = lo;
+    nodes_[node].hi = hi;
     nodes_[node].first = begin;
     nodes_[node].count = end - begin;
     return;
+  }
+  // The box of the centroids, to choose the split axis (the node's own box
+  // is its children's, once they are built).
+  Eigen::Vector3d clo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), chi = -clo;
+  for (uint32_t i = begin; i < end; ++i) {
+    clo = clo.cwiseMin(centroids[order_[i]]);
+    chi = chi.cwiseMax(centroids[order_[i]]);
   }
   int axis = 0;
   (chi - clo).maxCoeff(&axis);
@@ -76,12 +106,19 @@ void TriangleTree::build(uint32_t node, uint32_t begin, uint32_t end, const std:
     const double ca = centroids[a][axis], cb = centroids[b][axis];
     return ca < cb || (ca == cb && a < b);
   });
-  const auto child = static_cast<uint32_t>(nodes_.size());
+  const uint32_t child = descendants;
   nodes_[node].first = child;
-  nodes_.emplace_back();
-  nodes_.emplace_back();
-  build(child, begin, mid, centroids);
-  build(child + 1, mid, end, centroids);
+  const uint32_t second_descendants = child + 2 + nodes_over(subtree_nodes, mid - begin) - 1;
+  const auto first_half = [&] { build(child, child + 2, begin, mid, centroids, subtree_nodes); };
+  const auto second_half = [&] { build(child + 1, second_descendants, mid, end, centroids, subtree_nodes); };
+  if (end - begin >= kParallelBuild) {
+    tbb::parallel_invoke(first_half, second_half);
+  } else {
+    first_half();
+    second_half();
+  }
+  nodes_[node].lo = nodes_[child].lo.cwiseMin(nodes_[child + 1].lo);
+  nodes_[node].hi = nodes_[child].hi.cwiseMax(nodes_[child + 1].hi);
 }
 
 double TriangleTree::box_squared(const Node& n, const Eigen::Vector3d& q) {

@@ -10,6 +10,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "remesh/geometry.h"
@@ -36,8 +37,12 @@ class TriangleTree {
     uint32_t first = 0;      // a leaf: its triangles' slots; else: its first child (the second follows)
     uint32_t count = 0;      // triangles of a leaf, 0 for an inner node
   };
-  // Fills nodes_[node] over slots order_[begin, end), splitting below it.
-  void build(uint32_t node, uint32_t begin, uint32_t end, const std::vector<Eigen::Vector3d>& centroids);
+  // Fills nodes_[node] over slots order_[begin, end), splitting below it,
+  // its descendants from nodes_[descendants] on (in the order a serial
+  // depth-first build would number them; `subtree_nodes`: how many nodes a
+  // subtree over so many triangles has). Large halves are built in parallel.
+  void build(uint32_t node, uint32_t descendants, uint32_t begin, uint32_t end,
+             const std::vector<Eigen::Vector3d>& centroids, const std::vector<std::pair<uint32_t, uint32_t>>& subtree_nodes);
   static double box_squared(const Node& n, const Eigen::Vector3d& q);
 
   std::vector<std::array<Eigen::Vector3d, 3>> corners_;  // per slot, in leaf order
