@@ -87,42 +87,23 @@ struct Context {
 
 // ---- Eq. 1: nearest-site assignment -------------------------------------
 
-// A nanoflann result set for the single nearest site, seeded with the vertex's
-// current site: its distance bounds the search (most of the tree is pruned
-// after a Lloyd step) and on ties the vertex stays where it is.
-class NearestBelow {
- public:
-  using DistanceType = double;
-  using IndexType = uint32_t;
-  NearestBelow(double dist, uint32_t index) : dist_(dist), index_(index) {}
-  double worstDist() const { return dist_; }
-  bool full() const { return true; }
-  bool addPoint(double dist, uint32_t index) {
-    if (dist < dist_) {  // a leaf compares against its starting bound only
-      dist_ = dist;
-      index_ = index;
-    }
-    return true;
-  }
-  uint32_t index() const { return index_; }
-
- private:
-  double dist_;
-  uint32_t index_;
-};
-
-// NearestBelow that also keeps the distance to the nearest other generator:
+// A nanoflann result set for the nearest generator, seeded with the vertex's
+// current one: its distance bounds the search (most of the tree is pruned
+// after a Lloyd step) and on ties the vertex stays where it is. With
+// `keep_second`, it also keeps the distance to the nearest other generator:
 // the search then prunes by that one, and still finds the same nearest.
-class NearestTwo {
+class NearestSeeded {
  public:
   using DistanceType = double;
   using IndexType = uint32_t;
-  NearestTwo(double dist, uint32_t index) : dist_(dist), index_(index) {}
-  double worstDist() const { return second_; }
+  NearestSeeded(double dist, uint32_t index, bool keep_second)
+      : dist_(dist), index_(index), keep_second_(keep_second) {}
+  double worstDist() const { return keep_second_ ? second_ : dist_; }
   bool full() const { return true; }
   bool addPoint(double dist, uint32_t index) {
-    if (index == index_) return true;  // the nearest so far, met in the tree
-    if (dist < dist_) {
+    if (index == index_) {  // the nearest so far, met in the tree
+      dist_ = std::min(dist_, dist);
+    } else if (dist < dist_) {  // a leaf compares against its starting bound only
       second_ = std::min(second_, dist_);
       dist_ = dist;
       index_ = index;
@@ -137,6 +118,7 @@ class NearestTwo {
  private:
   double dist_;
   uint32_t index_;
+  bool keep_second_;
   double second_ = std::numeric_limits<double>::infinity();
 };
 
@@ -176,7 +158,7 @@ void assign_nearest(const Context& ctx, const std::vector<Eigen::Vector3d>& gene
       const int32_t current = cell_of[v];
       const double own = (p - generators[current]).squaredNorm();
       if (!bounds) {
-        NearestBelow nearest(own, static_cast<uint32_t>(current));
+        NearestSeeded nearest(own, static_cast<uint32_t>(current), false);
         if (nearest.worstDist() > 0) tree.findNeighbors(nearest, p.data(), nanoflann::SearchParams());
         cell_of[v] = static_cast<int32_t>(nearest.index());
         continue;
@@ -188,7 +170,7 @@ void assign_nearest(const Context& ctx, const std::vector<Eigen::Vector3d>& gene
         bounds->lower[v] = lower;
         continue;
       }
-      NearestTwo nearest(own, static_cast<uint32_t>(current));
+      NearestSeeded nearest(own, static_cast<uint32_t>(current), true);
       tree.findNeighbors(nearest, p.data(), nanoflann::SearchParams());
       cell_of[v] = static_cast<int32_t>(nearest.index());
       bounds->lower[v] = std::sqrt(nearest.second());

@@ -416,6 +416,7 @@ Status Remesher::build_base() {
     const int32_t input_offset = static_cast<int32_t>(input_.positions.size());
     const int32_t face_offset = static_cast<int32_t>(base_.mesh.triangles.size());
     append_mesh(input_, part);
+    parts_[c].mesh = TriangleMesh{};  // input_ holds it now; nothing after the base needs the parts
     append_mesh(base_.mesh, built->mesh);
     for (int32_t v : built->input_vertex) base_.input_vertex.push_back(v + input_offset);
     for (ParamPoint p : built->param) {
