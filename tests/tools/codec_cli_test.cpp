@@ -1,6 +1,8 @@
 // `srcodec encode`, `decode` and `info` on .srm files, as a user meets them.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "format/file_io.h"
 #include "tests/test_util.h"
 
@@ -89,6 +91,26 @@ TEST(CodecCli, BadRequestsSayWhatAndKeepWhatWasThere) {
   auto unreachable = run_srcodec("encode -q --levels 1 --psnr 150 " + in + " -o " + q(dir.file("u.srm")));
   EXPECT_EQ(unreachable.exit_code, 1);
   EXPECT_NE(unreachable.err.find("out of reach"), std::string::npos) << unreachable.err;
+}
+
+// An encode stopped by the user (Ctrl-C, after a second) leaves no partial
+// file behind: the old file stays as it was, and no temporary file is left.
+// Should the encode finish first (a fast machine), the file is whole.
+TEST(CodecCli, InterruptedEncodeLeavesNoPartialFile) {
+  test::ScratchDir dir;
+  const std::string out = dir.write("out.srm", "precious");
+  auto run = test::run_binary("timeout", "-s INT 1 " + q(SRCODEC_BINARY) + " encode -q " +
+                                             q(test::source_path("data/spot.obj")) + " -o " + q(out));
+  if (run.exit_code == 0) {
+    auto info = run_srcodec("info " + q(out));
+    EXPECT_EQ(info.exit_code, 0) << info.err;
+  } else {
+    EXPECT_EQ(read_file_bytes(out).value(), "precious") << run.err;
+  }
+  size_t files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(out).parent_path()))
+    files += entry.path().filename() == "out.srm" ? 0 : 1;
+  EXPECT_EQ(files, 0u) << "a temporary file was left";
 }
 
 }  // namespace
