@@ -293,7 +293,7 @@ void mark_unjoined_gains(const Adjacency& adj, const std::vector<int32_t>& befor
   }
   for (size_t head = 0; head < queue.size(); ++head)
     for (const int32_t* w = adj.begin(queue[head]); w != adj.end(queue[head]); ++w)
-      if (orphan[*w] && after[*w] == k) {
+      if (after[*w] == k && orphan[*w]) {  // another cell's task may be writing its own vertices' flags
         orphan[*w] = 0;
         queue.push_back(*w);
       }
