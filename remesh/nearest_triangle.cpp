@@ -46,9 +46,22 @@ NearestTriangle::NearestTriangle(const std::vector<Eigen::Vector3d>& positions,
   std::vector<double> sorted = longest;
   std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
   const double edge = sorted[sorted.size() / 2];
+  // A triangle more than kMaxSplit median edges long (a sliver across the
+  // mesh, as in damaged inputs) would widen every search by its reach; the
+  // few there are are measured one by one in exact() instead. Many of them
+  // (a mesh of long thin triangles) are covered like the others.
+  constexpr double kMaxSplit = 64.0;
+  constexpr size_t kMaxLoose = 64;
+  const auto splits = [&](size_t t) { return edge > 0.0 ? std::ceil(longest[t] / edge) : 1.0; };
+  for (size_t t = 0; t < triangles.size(); ++t)
+    if (splits(t) > kMaxSplit) loose_.push_back(static_cast<int32_t>(t));
+  if (loose_.size() > kMaxLoose) loose_.clear();
+  std::vector<char> loose(triangles.size(), 0);
+  for (int32_t t : loose_) loose[t] = 1;
   for (size_t t = 0; t < triangles.size(); ++t) {
+    if (loose[t]) continue;
     const auto& tri = triangles[t];
-    const int n = edge > 0.0 ? std::clamp(static_cast<int>(std::ceil(longest[t] / edge)), 1, 64) : 1;
+    const int n = static_cast<int>(std::clamp(splits(t), 1.0, kMaxSplit));
     reach_ = std::max(reach_, 2.0 / 3.0 * longest[t] / n);
     for_each_subtriangle_centroid(positions[tri[0]], positions[tri[1]], positions[tri[2]], n,
                                   [&](const Eigen::Vector3d& p) {
@@ -76,13 +89,20 @@ NearestTriangle::Hit NearestTriangle::operator()(const Eigen::Vector3d& q) const
 
 NearestTriangle::Hit NearestTriangle::exact(const Eigen::Vector3d& q, int32_t near_triangle) const {
   Hit hit;
-  if (near_triangle >= 0 && static_cast<size_t>(near_triangle) < triangles_.size() && !cover_.empty()) {
+  const bool prepared = !cover_.empty() || !loose_.empty();
+  if (near_triangle >= 0 && static_cast<size_t>(near_triangle) < triangles_.size() && prepared) {
     const Eigen::Vector3d c = closest_point(q, positions_, triangles_[near_triangle]);
     hit = Hit{near_triangle, c, (c - q).squaredNorm()};
   } else {
     hit = (*this)(q);
   }
-  if (hit.triangle < 0 || cover_.empty()) return hit;
+  if (hit.triangle < 0 || !prepared) return hit;
+  for (int32_t t : loose_) {
+    const Eigen::Vector3d c = closest_point(q, positions_, triangles_[t]);
+    const double d = (c - q).squaredNorm();
+    if (d < hit.squared || (d == hit.squared && t < hit.triangle)) hit = Hit{t, c, d};
+  }
+  if (cover_.empty()) return hit;
   // The covering points within the distance to the nearest triangle found
   // so far plus reach_, that bound shrinking as nearer triangles turn up. A
   // triangle whose covering point lies farther than that cannot be nearer.

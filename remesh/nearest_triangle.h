@@ -35,7 +35,8 @@ class NearestTriangle {
   // centroids' triangles, and to points far from the surface they often do,
   // which puts the remesh's error toward the input too high. Each triangle is covered by points (the centroids of a
   // regular split of it) within `reach_` of all of it, so that every
-  // triangle holding a point nearer than d has one of them within d + reach_.
+  // triangle holding a point nearer than d has one of them within d + reach_;
+  // a few very long ones are measured one by one instead.
   // `near_triangle`, when not -1, is a triangle likely to be the nearest (a
   // neighbouring query's): the search starts from it instead of from the
   // nearest centroids. The answer is the same either way; only the time
@@ -48,10 +49,12 @@ class NearestTriangle {
   std::vector<Eigen::Vector3d> centroids_;
   PointCloud cloud_;
   PointTree tree_;
-  // exact_search: the covering points, their triangles, and their reach.
+  // exact_search: the covering points, their triangles, and their reach;
+  // the few triangles too long to cover, measured one by one.
   std::vector<Eigen::Vector3d> cover_;
   std::vector<int32_t> cover_triangle_;
   double reach_ = 0.0;
+  std::vector<int32_t> loose_;
   PointCloud cover_cloud_;
   PointTree cover_tree_;
 };

@@ -55,5 +55,49 @@ TEST(NearestTriangle, ExactFindsTheNearestOfAll) {
   EXPECT_GT(missed_by_centroids, 30u);  // the soup does test the exact search
 }
 
+// A fine grid with a few triangles a hundred of its edges long across it,
+// as a damaged scan has: those are not covered but measured one by one, and
+// exact() still finds the nearest of all.
+TEST(NearestTriangle, ExactWithAFewVeryLongTriangles) {
+  std::vector<Eigen::Vector3d> positions;
+  std::vector<std::array<int32_t, 3>> triangles;
+  constexpr int kGrid = 100;  // edge 0.01
+  for (int j = 0; j <= kGrid; ++j)
+    for (int i = 0; i <= kGrid; ++i) positions.emplace_back(0.01 * i, 0.01 * j, 0.0);
+  for (int j = 0; j < kGrid; ++j)
+    for (int i = 0; i < kGrid; ++i) {
+      const int32_t a = j * (kGrid + 1) + i, b = a + 1, c = a + kGrid + 1, d = c + 1;
+      triangles.push_back({a, b, d});
+      triangles.push_back({a, d, c});
+    }
+  const size_t long_first = triangles.size();
+  for (const double z : {0.05, 0.2, -0.1}) {
+    const int32_t first = static_cast<int32_t>(positions.size());
+    positions.insert(positions.end(), {{0.0, 0.1, z}, {1.0, 0.9, z + 0.3}, {0.5, 0.52, z + 0.002}});
+    triangles.push_back({first, first + 1, first + 2});
+  }
+  const NearestTriangle nearest(positions, triangles, /*exact_search=*/true);
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> unit(-0.2, 1.2);
+  size_t on_long = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const Eigen::Vector3d q(unit(random), unit(random), 0.3 * unit(random));
+    NearestTriangle::Hit best;
+    for (size_t t = 0; t < triangles.size(); ++t) {
+      const auto& tri = triangles[t];
+      const Eigen::Vector3d c = closest_on_triangle(q, positions[tri[0]], positions[tri[1]], positions[tri[2]]);
+      const double d = (c - q).squaredNorm();
+      if (d < best.squared) best = NearestTriangle::Hit{static_cast<int32_t>(t), c, d};
+    }
+    for (const int32_t start : {-1, static_cast<int32_t>(random() % triangles.size())}) {
+      const NearestTriangle::Hit hit = nearest.exact(q, start);
+      ASSERT_EQ(hit.triangle, best.triangle) << "query " << i << " from " << start;
+      EXPECT_EQ(hit.squared, best.squared) << "query " << i << " from " << start;
+    }
+    on_long += static_cast<size_t>(best.triangle) >= long_first;
+  }
+  EXPECT_GT(on_long, 100u);  // the long triangles are often the answer
+}
+
 }  // namespace
 }  // namespace srcodec
