@@ -9,6 +9,19 @@
 namespace srcodec {
 namespace {
 
+// The nearest triangle by measuring every one (ties to the lower index).
+NearestTriangle::Hit nearest_of_all(const Eigen::Vector3d& q, const std::vector<Eigen::Vector3d>& positions,
+                                    const std::vector<std::array<int32_t, 3>>& triangles) {
+  NearestTriangle::Hit best;
+  for (size_t t = 0; t < triangles.size(); ++t) {
+    const auto& tri = triangles[t];
+    const Eigen::Vector3d c = closest_on_triangle(q, positions[tri[0]], positions[tri[1]], positions[tri[2]]);
+    const double d = (c - q).squaredNorm();
+    if (d < best.squared) best = NearestTriangle::Hit{static_cast<int32_t>(t), c, d};
+  }
+  return best;
+}
+
 // A soup of large, small and sliver triangles: the triangles with the
 // nearest centroids are often not the nearest, and exact() must still find
 // the nearest of all (ties to the lower index), as a search of every
@@ -36,13 +49,7 @@ TEST(NearestTriangle, ExactFindsTheNearestOfAll) {
   size_t missed_by_centroids = 0;
   for (int i = 0; i < 3000; ++i) {
     const Eigen::Vector3d q = 1.4 * point() - Eigen::Vector3d::Constant(0.2);
-    NearestTriangle::Hit best;
-    for (size_t t = 0; t < triangles.size(); ++t) {
-      const auto& tri = triangles[t];
-      const Eigen::Vector3d c = closest_on_triangle(q, positions[tri[0]], positions[tri[1]], positions[tri[2]]);
-      const double d = (c - q).squaredNorm();
-      if (d < best.squared) best = NearestTriangle::Hit{static_cast<int32_t>(t), c, d};
-    }
+    const NearestTriangle::Hit best = nearest_of_all(q, positions, triangles);
     // From the nearest centroids, and from a given triangle (any: the
     // answer must not depend on it).
     for (const int32_t start : {-1, static_cast<int32_t>(random() % triangles.size()), best.triangle}) {
@@ -82,13 +89,7 @@ TEST(NearestTriangle, ExactWithAFewVeryLongTriangles) {
   size_t on_long = 0;
   for (int i = 0; i < 2000; ++i) {
     const Eigen::Vector3d q(unit(random), unit(random), 0.3 * unit(random));
-    NearestTriangle::Hit best;
-    for (size_t t = 0; t < triangles.size(); ++t) {
-      const auto& tri = triangles[t];
-      const Eigen::Vector3d c = closest_on_triangle(q, positions[tri[0]], positions[tri[1]], positions[tri[2]]);
-      const double d = (c - q).squaredNorm();
-      if (d < best.squared) best = NearestTriangle::Hit{static_cast<int32_t>(t), c, d};
-    }
+    const NearestTriangle::Hit best = nearest_of_all(q, positions, triangles);
     for (const int32_t start : {-1, static_cast<int32_t>(random() % triangles.size())}) {
       const NearestTriangle::Hit hit = nearest.exact(q, start);
       ASSERT_EQ(hit.triangle, best.triangle) << "query " << i << " from " << start;
