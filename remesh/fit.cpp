@@ -13,6 +13,7 @@
 #include "remesh/folds.h"
 #include "remesh/geometry.h"
 #include "remesh/nearest_triangle.h"
+#include "remesh/parallel_flags.h"
 #include "remesh/point_cloud.h"
 
 namespace srcodec {
@@ -174,20 +175,14 @@ size_t undo_tangling_moves(const std::vector<std::vector<std::array<int32_t, 3>>
   // Each pass judges every pair and triangle in parallel on the positions
   // it starts from, then undoes in order as a serial pass would: one with
   // a corner undone earlier in the pass is judged again.
-  const auto judged = [](size_t count, const auto& refuses) {
-    std::vector<char> out(count);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 4096), [&](const tbb::blocked_range<size_t>& r) {
-      for (size_t i = r.begin(); i != r.end(); ++i) out[i] = refuses(i);
-    });
-    return out;
-  };
   for (bool changed = true; changed;) {
     changed = false;
     std::fill(undone.begin(), undone.end(), 0);
-    const std::vector<char> pairs = judged(neighbours.size(), [&](size_t i) { return pair_refuses(neighbours[i]); });
+    const std::vector<char> pairs =
+        parallel_flags(neighbours.size(), [&](size_t i) { return pair_refuses(neighbours[i]); });
     std::vector<std::vector<char>> triangles(levels.size());
     for (size_t k = 0; k < levels.size(); ++k)
-      triangles[k] = judged(levels[k].size(), [&](size_t i) { return triangle_refuses(levels[k][i]); });
+      triangles[k] = parallel_flags(levels[k].size(), [&](size_t i) { return triangle_refuses(levels[k][i]); });
     for (size_t i = 0; i < neighbours.size(); ++i) {
       const auto &a = fine[neighbours[i].first], &b = fine[neighbours[i].second];
       if (touched(a) || touched(b) ? pair_refuses(neighbours[i]) : pairs[i]) changed |= undo(a) | undo(b);

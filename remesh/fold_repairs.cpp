@@ -7,6 +7,7 @@
 // midpoints, and on the last level patches redrawn (patch_reparam.cpp).
 // Folds and pleats are judged as remesh/folds.h defines them.
 #include "remesh/refiner.h"
+#include "remesh/parallel_flags.h"
 
 namespace srcodec {
 
@@ -23,11 +24,7 @@ void Refiner::count_tangles(RefineLevelReport& lr) const {
 }
 
 std::vector<char> Refiner::folded_flags(const std::vector<std::array<int32_t, 3>>& triangles) const {
-  std::vector<char> out(triangles.size());
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, triangles.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t t = r.begin(); t != r.end(); ++t) out[t] = folded(triangles[t], -1, -1) ? 1 : 0;
-  });
-  return out;
+  return parallel_flags(triangles.size(), [&](size_t t) { return folded(triangles[t], -1, -1); });
 }
 
 void Refiner::untangle(int32_t level, RefineLevelReport& lr) {
@@ -304,13 +301,10 @@ size_t Refiner::folded_by_nearest_input() const {
     for (size_t s = r.begin(); s != r.end(); ++s)
       if (anchor_[s] >= 0) corner_normal[s] = normals_[nearest_input_vertex(anchor_[s])];
   });
-  std::vector<char> flags(triangles_.size());
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, triangles_.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t i = r.begin(); i != r.end(); ++i) {
-      const auto& t = triangles_[i];
-      flags[i] = srcodec::folded(srcodec::facing(points_[anchor_[t[0]]], points_[anchor_[t[1]]], points_[anchor_[t[2]]],
-                                                 corner_normal[t[0]] + corner_normal[t[1]] + corner_normal[t[2]]));
-    }
+  const std::vector<char> flags = parallel_flags(triangles_.size(), [&](size_t i) {
+    const auto& t = triangles_[i];
+    return srcodec::folded(srcodec::facing(points_[anchor_[t[0]]], points_[anchor_[t[1]]], points_[anchor_[t[2]]],
+                                           corner_normal[t[0]] + corner_normal[t[1]] + corner_normal[t[2]]));
   });
   return static_cast<size_t>(std::count(flags.begin(), flags.end(), 1));
 }

@@ -8,6 +8,7 @@
 #include <nanoflann.hpp>
 
 #include "remesh/geometry.h"
+#include "remesh/parallel_flags.h"
 
 namespace srcodec {
 
@@ -88,15 +89,11 @@ FoldCount count_by_sides(const std::vector<Eigen::Vector3d>& positions, const st
                          const std::vector<std::array<int32_t, 3>>& triangles,
                          const std::vector<std::pair<int32_t, int32_t>>& neighbours, std::vector<char>* marked) {
   // Each triangle and pair judged in parallel; counted and marked after.
-  std::vector<char> fold(triangles.size()), pleated(neighbours.size());
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, triangles.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t t = r.begin(); t != r.end(); ++t) fold[t] = folded(positions, side, triangles[t]);
-  });
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, neighbours.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t k = r.begin(); k != r.end(); ++k) {
-      const auto [t, u] = neighbours[k];
-      pleated[k] = pleat(triangle_normal(positions, triangles[t]), triangle_normal(positions, triangles[u]));
-    }
+  const std::vector<char> fold =
+      parallel_flags(triangles.size(), [&](size_t t) { return folded(positions, side, triangles[t]); });
+  const std::vector<char> pleated = parallel_flags(neighbours.size(), [&](size_t k) {
+    const auto [t, u] = neighbours[k];
+    return pleat(triangle_normal(positions, triangles[t]), triangle_normal(positions, triangles[u]));
   });
   FoldCount count;
   if (marked) marked->assign(triangles.size(), 0);

@@ -624,13 +624,12 @@ size_t split_round(const Context& ctx, size_t target, VoronoiCells& cells) {
 size_t assign_connected(const Context& ctx, const std::vector<Eigen::Vector3d>& generators,
                         const std::vector<int32_t>& before, VoronoiCells& cells, AssignBounds* bounds = nullptr) {
   assign_nearest(ctx, generators, cells.sites, cells.cell_of, bounds);
-  if (!bounds) return connect_cells(ctx.adjacency, orphans(ctx.adjacency, cells.sites, before, cells.cell_of), cells.cell_of);
-  const std::vector<int32_t> nearest = cells.cell_of;
-  const size_t moved =
-      connect_cells(ctx.adjacency, orphans(ctx.adjacency, cells.sites, before, cells.cell_of), cells.cell_of);
-  if (moved > 0)
-    for (size_t v = 0; v < nearest.size(); ++v)
-      if (nearest[v] != cells.cell_of[v]) bounds->forget(v);
+  const std::vector<char> orphan = orphans(ctx.adjacency, cells.sites, before, cells.cell_of);
+  const size_t moved = connect_cells(ctx.adjacency, orphan, cells.cell_of);
+  // The repair moves orphans to a cell not their nearest generator's.
+  if (bounds && moved > 0)
+    for (size_t v = 0; v < orphan.size(); ++v)
+      if (orphan[v]) bounds->forget(v);
   return moved;
 }
 

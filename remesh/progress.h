@@ -20,8 +20,8 @@ enum class RemeshStep {
   kFewerLevels,            // levels: those asked; vertices: what they need; report: oversampled_vertices
   kThresholdLevelByLevel,  // levels: those asked (too many for a uniform refinement first)
   kSites,                  // report: curled_sites, tip_sites, seconds_sites; vertices: the sites (all components)
-  kBaseMesh,               // report: base_vertices, curled_sites, tip_sites, promoted_vertices,
-                           // seconds_sites, seconds_base; triangles: the base mesh's
+  kBaseMesh,               // report: base_vertices, promoted_vertices, seconds_base; triangles: the
+                           // base mesh's
   kLevel,                  // refine_level: the level built
   kThresholdStops,         // level: the level no triangle was selected for
   kSplitsUndone,           // refine_level: the repairs' counts after; triangles: left on the finest

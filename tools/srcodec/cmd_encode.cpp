@@ -1,6 +1,5 @@
 // `srcodec encode MESH -o OUT.srm`: remesh, transform, code, and keep as much
 // of the embedded stream as the rate option asks (--bytes, --bpv, --psnr).
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -9,7 +8,6 @@
 
 #include "codec/encode_mesh.h"
 #include "format/file_io.h"
-#include "format/mesh_files/mesh_io.h"
 #include "tools/srcodec/commands.h"
 #include "tools/srcodec/json_writer.h"
 #include "tools/srcodec/remesh_flags.h"
@@ -127,12 +125,7 @@ Status run_encode(const EncodeCliOptions& o) {
       if (std::string(p.stage) == "code" && !line.empty()) std::cerr << "encode: " << line << std::endl;
     };
   }
-  const auto read_start = std::chrono::steady_clock::now();
-  SRCODEC_ASSIGN_OR_RETURN(TriangleMesh input, read_triangle_mesh(o.input));
-  if (!o.quiet)
-    std::cerr << "encode: " << read_progress_line(input.positions.size(), input.triangles.size(),
-                                              std::chrono::duration<double>(std::chrono::steady_clock::now() - read_start).count())
-              << std::endl;
+  SRCODEC_ASSIGN_OR_RETURN(TriangleMesh input, read_mesh_with_progress(o.input, o.quiet, "encode: "));
   SRCODEC_ASSIGN_OR_RETURN(MeshEncodeResult result, encode_mesh(input, options));
   if (!o.quiet && options.rate.kind == Rate::Kind::kKnee) std::cerr << "encode: " << knee_line(result) << std::endl;
   SRCODEC_RETURN_IF_ERROR(write_file_atomically(o.output, std::string(result.file.begin(), result.file.end())));

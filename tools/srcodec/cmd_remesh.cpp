@@ -161,12 +161,7 @@ Status run_remesh(const RemeshCliOptions& o) {
   if (!o.quiet)
     options.progress =
         remesh_progress_lines([](const std::string& line) { std::cerr << "remesh: " << line << std::endl; });
-  const auto read_start = std::chrono::steady_clock::now();
-  SRCODEC_ASSIGN_OR_RETURN(TriangleMesh input, read_triangle_mesh(o.input));
-  if (!o.quiet)
-    std::cerr << "remesh: " << read_progress_line(input.positions.size(), input.triangles.size(),
-                                              std::chrono::duration<double>(std::chrono::steady_clock::now() - read_start).count())
-              << std::endl;
+  SRCODEC_ASSIGN_OR_RETURN(TriangleMesh input, read_mesh_with_progress(o.input, o.quiet, "remesh: "));
   const auto start = std::chrono::steady_clock::now();
   RemeshReport report;
   SRCODEC_ASSIGN_OR_RETURN(SemiRegularMesh srm, remesh(input, options, &report));

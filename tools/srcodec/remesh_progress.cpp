@@ -1,7 +1,10 @@
 #include "tools/srcodec/remesh_progress.h"
 
+#include <chrono>
+#include <iostream>
 #include <utility>
 
+#include "format/mesh_files/mesh_io.h"
 #include "remesh/remesher.h"
 
 namespace srcodec {
@@ -10,14 +13,6 @@ namespace {
 std::string n(size_t v) { return std::to_string(v); }
 std::string n(int v) { return std::to_string(v); }
 std::string n(double v) { return std::to_string(v); }
-
-}  // namespace
-
-std::string read_progress_line(size_t vertices, size_t triangles, double seconds) {
-  return "read: " + n(vertices) + " vertices, " + n(triangles) + " triangles (cleaned), " + n(seconds) + " s";
-}
-
-namespace {
 
 std::string level_line(const RefineLevelReport& lr) {
   std::string tangles;  // the goal is none; say so when some are left
@@ -115,6 +110,16 @@ std::string remesh_progress_line(const RemeshProgress& p) {
 
 RemeshProgressCallback remesh_progress_lines(std::function<void(const std::string&)> say) {
   return [say = std::move(say)](const RemeshProgress& p) { say(remesh_progress_line(p)); };
+}
+
+StatusOr<TriangleMesh> read_mesh_with_progress(const std::string& path, bool quiet, const std::string& prefix) {
+  const auto start = std::chrono::steady_clock::now();
+  SRCODEC_ASSIGN_OR_RETURN(TriangleMesh mesh, read_triangle_mesh(path));
+  if (!quiet)
+    std::cerr << prefix << "read: " << n(mesh.positions.size()) << " vertices, " << n(mesh.triangles.size())
+              << " triangles (cleaned), " << n(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count())
+              << " s" << std::endl;
+  return mesh;
 }
 
 }  // namespace srcodec
