@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "codec/srm_codec.h"
@@ -37,21 +38,52 @@ StatusOr<std::shared_ptr<const SurfaceReference>> StreamCutter::reference(size_t
   return reference_;
 }
 
-StatusOr<double> StreamCutter::psnr(uint64_t segment_bytes, size_t samples) const {
-  const auto decode_cut = [&]() -> StatusOr<DecodedSrm> {
-    SRCODEC_ASSIGN_OR_RETURN(std::vector<uint8_t> file, cut(segment_bytes));
-    SRCODEC_ASSIGN_OR_RETURN(SrmFile f, parse_srm(file.data(), file.size()));
-    return decode_srm(f);
-  };
+StatusOr<TriangleMesh> StreamCutter::decoded(uint64_t segment_bytes) const {
+  SRCODEC_ASSIGN_OR_RETURN(std::vector<uint8_t> file, cut(segment_bytes));
+  SRCODEC_ASSIGN_OR_RETURN(SrmFile f, parse_srm(file.data(), file.size()));
+  SRCODEC_ASSIGN_OR_RETURN(DecodedSrm d, decode_srm(f));
+  return std::move(d.mesh);
+}
+
+StatusOr<SurfaceDistance> StreamCutter::measure(uint64_t segment_bytes, size_t samples, TriangleMesh* mesh_out) const {
   // Both serial: the input's reference, when it is still to build, is built
   // on the other core meanwhile.
-  std::optional<StatusOr<DecodedSrm>> decoded;
+  std::optional<StatusOr<TriangleMesh>> mesh;
   std::optional<StatusOr<std::shared_ptr<const SurfaceReference>>> ref;
-  tbb::parallel_invoke([&] { decoded = decode_cut(); }, [&] { ref = reference(samples); });
-  if (!decoded->ok()) return decoded->status();
+  tbb::parallel_invoke([&] { mesh = decoded(segment_bytes); }, [&] { ref = reference(samples); });
+  if (!mesh->ok()) return mesh->status();
   if (!ref->ok()) return ref->status();
-  SRCODEC_ASSIGN_OR_RETURN(SurfaceDistance s, ref->value()->distance_to(decoded->value().mesh));
+  StatusOr<SurfaceDistance> s = ref->value()->distance_to(mesh->value());
+  if (mesh_out) *mesh_out = std::move(mesh->value());
+  return s;
+}
+
+StatusOr<double> StreamCutter::psnr(uint64_t segment_bytes, size_t samples) const {
+  SRCODEC_ASSIGN_OR_RETURN(SurfaceDistance s, measure(segment_bytes, samples));
   return s.psnr;
+}
+
+StatusOr<std::shared_ptr<const CutEstimate>> StreamCutter::estimate() const {
+  const std::lock_guard<std::mutex> lock(estimate_mutex_);
+  if (!estimate_) {
+    // Isolated, as in reference(): the measure's tasks must not take up a
+    // task that waits for this lock.
+    TriangleMesh mesh;
+    StatusOr<SurfaceDistance> whole =
+        tbb::this_task_arena::isolate([&] { return measure(segment_bytes_, kRateControlSamples, &mesh); });
+    if (!whole.ok()) return whole.status();
+    estimate_ = std::make_shared<const CutEstimate>(mesh, whole.value());
+  }
+  return estimate_;
+}
+
+StatusOr<double> StreamCutter::estimated_psnr(uint64_t segment_bytes) const {
+  SRCODEC_ASSIGN_OR_RETURN(std::shared_ptr<const CutEstimate> e, estimate());
+  if (segment_bytes >= segment_bytes_) return e->whole_psnr();
+  SRCODEC_ASSIGN_OR_RETURN(TriangleMesh mesh, decoded(segment_bytes));
+  StatusOr<double> estimated = e->psnr(mesh);
+  if (estimated.ok()) return estimated;
+  return psnr(segment_bytes, kRateControlSamples);
 }
 
 StatusOr<uint64_t> StreamCutter::segment_bytes_within(uint64_t bytes) const {
@@ -78,67 +110,135 @@ StatusOr<uint64_t> segment_bytes_for_psnr(const StreamCutter& cutter, double tar
   return hi;
 }
 
+namespace {
+
+// The ladder of cuts knee_of_stream walks, each file kKneeCutRatio times
+// the last, from the smallest file to the whole stream, placed as the walk
+// needs them, with their PSNRs estimated and measured as it asks.
+class KneeLadder {
+ public:
+  explicit KneeLadder(const StreamCutter& cutter) : cutter_(cutter) {}
+
+  size_t size() const { return cuts_.size(); }
+  const Knee& operator[](size_t k) const { return cuts_[k]; }
+  bool complete() const { return !cuts_.empty() && cuts_.back().segment_bytes >= cutter_.segment_bytes(); }
+  int measured_count() const { return measured_count_; }
+  double estimated(size_t k) const { return estimated_[k]; }
+  double measured(size_t k) const { return measured_[k]; }
+
+  // Places cuts until there is one at index k or the ladder is complete:
+  // where a cut lies depends only on the sizes of the files before it.
+  Status place_to(size_t k) {
+    while (cuts_.size() <= k && !complete()) {
+      Knee c;
+      if (!cuts_.empty()) {
+        const Knee& last = cuts_.back();
+        const auto budget = static_cast<uint64_t>(std::ceil(static_cast<double>(last.file_bytes) * kKneeCutRatio));
+        SRCODEC_ASSIGN_OR_RETURN(uint64_t within, cutter_.segment_bytes_within(budget));
+        c.segment_bytes = std::max(within, last.segment_bytes + 1);
+      }
+      SRCODEC_ASSIGN_OR_RETURN(std::vector<uint8_t> file, cutter_.cut(c.segment_bytes));
+      c.file_bytes = file.size();
+      cuts_.push_back(c);
+      estimated_.push_back(kUnknown);
+      measured_.push_back(kUnknown);
+    }
+    return ok_status();
+  }
+
+  // The PSNRs of cuts first..last still unknown, two at a time: a cut's
+  // decode, and its measure's tree build, leave a core idle.
+  Status estimate(size_t first, size_t last) {
+    return fill(first, last, estimated_, [&](uint64_t s) { return cutter_.estimated_psnr(s); });
+  }
+  Status measure(size_t first, size_t last) {
+    const size_t before = count_known(measured_);
+    const Status s = fill(first, last, measured_, [&](uint64_t b) { return cutter_.psnr(b, kRateControlSamples); });
+    measured_count_ += static_cast<int>(count_known(measured_) - before);
+    return s;
+  }
+
+ private:
+  static constexpr double kUnknown = -std::numeric_limits<double>::infinity();
+  static size_t count_known(const std::vector<double>& v) {
+    return static_cast<size_t>(std::count_if(v.begin(), v.end(), [](double x) { return x != kUnknown; }));
+  }
+  template <class PsnrOf>
+  Status fill(size_t first, size_t last, std::vector<double>& psnr, const PsnrOf& psnr_of) {
+    std::vector<size_t> todo;
+    for (size_t k = first; k <= last && k < cuts_.size(); ++k)
+      if (psnr[k] == kUnknown) todo.push_back(k);
+    for (size_t i = 0; i < todo.size(); i += 2) {
+      std::optional<StatusOr<double>> one, two;
+      tbb::parallel_invoke([&] { one = psnr_of(cuts_[todo[i]].segment_bytes); },
+                           [&] {
+                             if (i + 1 < todo.size()) two = psnr_of(cuts_[todo[i + 1]].segment_bytes);
+                           });
+      if (!one->ok()) return one->status();
+      psnr[todo[i]] = one->value();
+      if (two) {
+        if (!two->ok()) return two->status();
+        psnr[todo[i + 1]] = two->value();
+      }
+    }
+    return ok_status();
+  }
+
+  const StreamCutter& cutter_;
+  std::vector<Knee> cuts_;
+  std::vector<double> estimated_, measured_;
+  int measured_count_ = 0;
+};
+
+// The first cut from `from` on whose next two steps (a file about 1.56
+// times as large) gain less than kKneeDbPerBpv dB per bit per input vertex,
+// by `psnr` (KneeLadder::estimated or measured, filled by `fill`), or the
+// whole stream. Two steps, not one: the PSNR of an embedded stream climbs
+// in stairs, as bit planes and levels begin, and one step alone can fall on
+// a flat stair.
+template <class Psnr, class Fill>
+StatusOr<size_t> first_knee(KneeLadder& ladder, size_t from, double bits_per_byte_vertex, const Psnr& psnr,
+                            const Fill& fill) {
+  for (size_t k = from;; ++k) {
+    SRCODEC_RETURN_IF_ERROR(ladder.place_to(k + 2));
+    if (k >= ladder.size()) return ladder.size() - 1;
+    const size_t ahead = std::min(k + 2, ladder.size() - 1);
+    SRCODEC_RETURN_IF_ERROR(fill(k, ahead));
+    if (ahead == k) return k;  // the whole stream: no knee before it
+    const double bpv_gained = bits_per_byte_vertex * (static_cast<double>(ladder[ahead].file_bytes) -
+                                                      static_cast<double>(ladder[k].file_bytes));
+    // An exact reproduction (infinite PSNR) gains more than any slope; a cut
+    // already exact gains nothing more.
+    if (!(psnr(ahead) - psnr(k) >= kKneeDbPerBpv * bpv_gained)) return k;
+  }
+}
+
+}  // namespace
+
 StatusOr<Knee> knee_of_stream(const StreamCutter& cutter, size_t input_vertices) {
   if (input_vertices == 0) return invalid_argument("rate control: the input has no vertices");
   const double bits_per_byte_vertex = 8.0 / static_cast<double>(input_vertices);
-  // The cut keeping `segment_bytes`, or after `last` (each file
-  // kKneeCutRatio times the last): its file's size, its PSNR still 0.
-  const auto place = [&](const Knee* last) -> StatusOr<Knee> {
-    Knee c;
-    if (last) {
-      const auto budget = static_cast<uint64_t>(std::ceil(static_cast<double>(last->file_bytes) * kKneeCutRatio));
-      SRCODEC_ASSIGN_OR_RETURN(uint64_t within, cutter.segment_bytes_within(budget));
-      c.segment_bytes = std::max(within, last->segment_bytes + 1);
-    }
-    SRCODEC_ASSIGN_OR_RETURN(std::vector<uint8_t> file, cutter.cut(c.segment_bytes));
-    c.file_bytes = file.size();
-    return c;
-  };
-  // The PSNR of a placed cut.
-  const auto measured = [&](StatusOr<Knee> c) -> StatusOr<Knee> {
-    if (!c.ok()) return c;
-    SRCODEC_ASSIGN_OR_RETURN(c.value().psnr, cutter.psnr(c.value().segment_bytes, kRateControlSamples));
-    return c;
-  };
-  std::vector<Knee> cuts;  // every cut measured, each file kKneeCutRatio times the last
-  // A cut measured ahead that failed: the error once the ladder needs it.
-  Status failed_ahead = ok_status();
-  // The next two cuts (one when the next is the whole stream), measured at
-  // once: where a cut lies depends on the sizes of the files before it, not
-  // on their PSNRs, and a cut's decode and tree build leave a core idle.
-  const auto measure_next = [&]() -> Status {
-    SRCODEC_RETURN_IF_ERROR(failed_ahead);
-    SRCODEC_ASSIGN_OR_RETURN(const Knee first, place(cuts.empty() ? nullptr : &cuts.back()));
-    std::optional<StatusOr<Knee>> one, two;
-    tbb::parallel_invoke([&] { one = measured(first); },
-                         [&] {
-                           if (first.segment_bytes < cutter.segment_bytes()) two = measured(place(&first));
-                         });
-    if (!one->ok()) return one->status();
-    cuts.push_back(one->value());
-    if (two && two->ok()) cuts.push_back(two->value());
-    if (two && !two->ok()) failed_ahead = two->status();
-    return ok_status();
-  };
-  // Each cut judged by the two steps after it (a file about 1.56 times as
-  // large): the PSNR of an embedded stream climbs in stairs, as bit planes
-  // and levels begin, and one step alone can fall on a flat stair.
-  for (size_t k = 0;; ++k) {
-    while (cuts.size() < k + 3 && (cuts.empty() || cuts.back().segment_bytes < cutter.segment_bytes()))
-      SRCODEC_RETURN_IF_ERROR(measure_next());
-    const size_t ahead = std::min(k + 2, cuts.size() - 1);
-    Knee at = cuts[k];
-    at.cuts = static_cast<int>(cuts.size());
-    if (ahead == k) {  // the whole stream: no knee before it
-      at.whole_stream = true;
-      return at;
-    }
-    const double bpv_gained = bits_per_byte_vertex * (static_cast<double>(cuts[ahead].file_bytes) -
-                                                      static_cast<double>(at.file_bytes));
-    // An exact reproduction (infinite PSNR) gains more than any slope; a cut
-    // already exact gains nothing more.
-    if (!(cuts[ahead].psnr - at.psnr >= kKneeDbPerBpv * bpv_gained)) return at;
-  }
+  KneeLadder ladder(cutter);
+  // Where the knee is, by the estimate; then the metric decides, from two
+  // cuts before it: the estimate's slopes near the knee can be off by a
+  // tenth of a dB, and the decision there is often that close.
+  SRCODEC_ASSIGN_OR_RETURN(
+      const size_t guess,
+      first_knee(ladder, 0, bits_per_byte_vertex, [&](size_t k) { return ladder.estimated(k); },
+                 [&](size_t a, size_t b) { return ladder.estimate(a, b); }));
+  const size_t from = guess >= kKneeRecheckedSteps ? guess - kKneeRecheckedSteps : 0;
+  // The cuts the metric judges when it agrees, measured two at a time up front.
+  SRCODEC_RETURN_IF_ERROR(ladder.measure(from, guess + 2));
+  SRCODEC_ASSIGN_OR_RETURN(
+      const size_t k,
+      first_knee(ladder, from, bits_per_byte_vertex, [&](size_t i) { return ladder.measured(i); },
+                 [&](size_t a, size_t b) { return ladder.measure(a, b); }));
+  Knee at = ladder[k];
+  at.psnr = ladder.measured(k);
+  at.whole_stream = k + 1 == ladder.size() && ladder.complete();
+  at.cuts = ladder.measured_count();
+  at.estimated_cuts = static_cast<int>(ladder.size());
+  return at;
 }
 
 }  // namespace srcodec

@@ -67,6 +67,54 @@ TEST(RateControl, KneeKeepsTheSteepPartOfTheCurve) {
   EXPECT_EQ(again->segment_bytes, knee->segment_bytes);
 }
 
+// The estimate the knee search walks on (codec/cut_estimate.h) against the
+// metric, on every cut of the ladder: of the right size everywhere (within
+// 1.5 dB; it is closest near the whole stream, where knees lie), the
+// measure itself for the whole stream, and the knee it leads to is the one
+// the metric alone gives.
+TEST(RateControl, EstimateLeadsToTheMetricsKnee) {
+  for (const char* mesh : {"data/spot.obj", "data/bunny_npm.obj"}) {
+    SCOPED_TRACE(mesh);
+    StatusOr<TriangleMesh> input = read_triangle_mesh(test::source_path(mesh));
+    ASSERT_TRUE(input.ok()) << input.status().message();
+    RemeshOptions options;
+    options.levels = 2;
+    const std::vector<uint8_t> stream = whole_stream(input.value(), options);
+    ASSERT_FALSE(stream.empty());
+    const StreamCutter cutter(input.value(), stream);
+    const size_t n = input->positions.size();
+    // The ladder knee_of_stream places, every cut measured.
+    std::vector<Knee> ladder;
+    for (;;) {
+      Knee c;
+      if (!ladder.empty())
+        c.segment_bytes = std::max(cutter.segment_bytes_within(static_cast<uint64_t>(
+                                       std::ceil(static_cast<double>(ladder.back().file_bytes) * kKneeCutRatio))).value(),
+                                   ladder.back().segment_bytes + 1);
+      c.file_bytes = cutter.cut(c.segment_bytes)->size();
+      c.psnr = cutter.psnr(c.segment_bytes, kRateControlSamples).value();
+      const double estimated = cutter.estimated_psnr(c.segment_bytes).value();
+      EXPECT_NEAR(estimated, c.psnr, 1.5) << "cut of " << c.file_bytes << " bytes";
+      ladder.push_back(c);
+      if (c.segment_bytes >= cutter.segment_bytes()) {
+        EXPECT_DOUBLE_EQ(estimated, c.psnr);
+        break;
+      }
+    }
+    ASSERT_GT(ladder.size(), 5u);
+    size_t k = 0;
+    for (; k + 1 < ladder.size(); ++k) {
+      const size_t ahead = std::min(k + 2, ladder.size() - 1);
+      if (!(slope(ladder[k], ladder[ahead].psnr, ladder[ahead].file_bytes, n) >= kKneeDbPerBpv)) break;
+    }
+    StatusOr<Knee> knee = knee_of_stream(cutter, n);
+    ASSERT_TRUE(knee.ok()) << knee.status().message();
+    EXPECT_EQ(knee->segment_bytes, ladder[k].segment_bytes);
+    EXPECT_DOUBLE_EQ(knee->psnr, ladder[k].psnr);
+    EXPECT_LT(knee->cuts, static_cast<int>(ladder.size())) << "the estimate spares no measure";
+  }
+}
+
 TEST(RateControl, KneeOfAStreamWithNoLevelsIsTheWholeStream) {
   // An octahedron as its own base mesh: nothing to refine, nothing to trade.
   TriangleMesh octahedron;

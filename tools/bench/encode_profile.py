@@ -51,7 +51,7 @@ PATTERNS = [
     ("untangle", re.compile(r"^remesh: untangle( \(wide search\))?: .*, " + NUM + " s$")),
     ("slivers", re.compile(r"^remesh: slivers: .*, " + NUM + " s$")),
     ("code", re.compile(r"^encode: (?:no rate option given|searching for)")),
-    ("cuts", re.compile(r"^encode: (\d+) cuts? measured")),
+    ("cuts", re.compile(r"^encode: (?:(\d+) cuts? estimated, (\d+) measured|(\d+) cuts? measured)")),
 ]
 
 
@@ -208,7 +208,8 @@ def stages_of(lines, end, end_cpu, tail_peak, report, remesh_only):
             elif kind == "code":
                 code = (stamp, cpu, peak, ratio)
             elif kind == "cuts":
-                cuts, cut_count = (stamp, cpu, peak, ratio), int(g[0])
+                cuts = (stamp, cpu, peak, ratio)
+                cut_count = f"{g[0]} cuts estimated, {g[1]} measured" if g[0] else f"{g[2]} cuts"
             if kind not in ("code", "cuts"):
                 remesh_cpu[1] = (cpu, stamp)
             peak, prev_stamp, prev_cpu = 0.0, stamp, cpu
@@ -246,7 +247,7 @@ def stages_of(lines, end, end_cpu, tail_peak, report, remesh_only):
     # measuring (rate control, measuring) is charged to the coding and to the rate control.
     add("coding", report["coding_seconds"], "", code[2] if code else 0.0, code[3] if code else 1.0)
     rate_ratio = cuts[3] if cuts else 1.0
-    add("rate control (cuts decoded, measured)", report["rate_seconds"], f"{cut_count} cuts" if cuts else "",
+    add("rate control (cuts decoded, measured)", report["rate_seconds"], cut_count if cuts else "",
         cuts[2] if cuts else 0.0, rate_ratio)
     if code and cuts:
         add("measure the file kept", cuts[0] - code[0] - report["rate_seconds"], "stamps", 0.0, rate_ratio)

@@ -68,8 +68,9 @@ std::string knee_line(const MeshEncodeResult& r) {
                       : std::isfinite(knee.psnr) ? ", the whole stream"
                                                  : ": the whole stream reproduces the input exactly";
   char line[200];
-  std::snprintf(line, sizeof line, "%d cut%s measured: keeping %llu of %llu bytes, %.2f dB%s", knee.cuts,
-                knee.cuts == 1 ? "" : "s", static_cast<unsigned long long>(knee.file_bytes),
+  std::snprintf(line, sizeof line, "%d cut%s estimated, %d measured: keeping %llu of %llu bytes, %.2f dB%s",
+                knee.estimated_cuts, knee.estimated_cuts == 1 ? "" : "s", knee.cuts,
+                static_cast<unsigned long long>(knee.file_bytes),
                 static_cast<unsigned long long>(r.full_stream_bytes), knee.psnr, whole);
   return line;
 }
