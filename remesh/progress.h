@@ -15,6 +15,8 @@ struct UnsplitReport;
 
 enum class RemeshStep {
   kWholeInputIsBase,       // vertices: the input's; min_base_vertices: the smallest default base
+  kComponents,             // report: components; vertices: theirs (a vertex at a cut non-manifold spot is
+                           // counted in each piece); seconds: the split's
   kOversampled,            // report: oversample_steps, oversampled_vertices
   kBaseSizeRaised,         // vertices: the new default base size
   kFewerLevels,            // levels: those asked; vertices: what they need; report: oversampled_vertices
@@ -22,6 +24,8 @@ enum class RemeshStep {
   kSites,                  // report: curled_sites, tip_sites, seconds_sites; vertices: the sites (all components)
   kBaseMesh,               // report: base_vertices, promoted_vertices, seconds_base; triangles: the
                            // base mesh's
+  kRefineSetUp,            // vertices: the points placed on the base domain; seconds: the set-up's (their
+                           // search trees, densities, normals and first cells)
   kLevel,                  // refine_level: the level built
   kThresholdStops,         // level: the level no triangle was selected for
   kSplitsUndone,           // refine_level: the repairs' counts after; triangles: left on the finest

@@ -10,7 +10,8 @@ namespace srcodec {
 
 Refiner::Refiner(const TriangleMesh& input, const BaseMesh& base, const RefineOptions& options,
                  TriangleHierarchy hierarchy)
-    : input_(input),
+    : created_(std::chrono::steady_clock::now()),
+      input_(input),
       base_(base),
       options_(options),
       h_(std::move(hierarchy)),
@@ -39,6 +40,11 @@ Status Refiner::run(std::vector<RefineLevelReport>* report) {
   // Level 0: the base mesh's own cells, for the first selection.
   int32_t level = 0;
   std::vector<int32_t> cell_of = assign(level);
+  RemeshProgress set_up;
+  set_up.step = RemeshStep::kRefineSetUp;
+  set_up.vertices = points_.size();
+  set_up.seconds = seconds_since(created_);
+  progress(set_up);
   for (int step = 0; step < options_.levels; ++step) {
     const auto start = std::chrono::steady_clock::now();
     RefineLevelReport lr;

@@ -470,6 +470,8 @@ class Refiner {
   Status undo_splits(int32_t level, const std::vector<int32_t>& cell_of, std::vector<size_t>* selected,
                      std::vector<size_t>* within_tolerance);
 
+  // When the set-up began: its progress line gives its seconds.
+  std::chrono::steady_clock::time_point created_;
   const TriangleMesh& input_;
   const BaseMesh& base_;
   const RefineOptions& options_;

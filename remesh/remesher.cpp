@@ -234,6 +234,7 @@ StatusOr<SemiRegularMesh> Remesher::whole_input_as_base(RemeshReport* report) co
 }
 
 Status Remesher::split_and_oversample() {
+  const auto split_start = std::chrono::steady_clock::now();
   SRCODEC_ASSIGN_OR_RETURN(parts_, split_into_manifold_components(mesh_));
   rep_.components = parts_.size();
   // Each component's share of the base is capped at its own vertex count
@@ -241,6 +242,11 @@ Status Remesher::split_and_oversample() {
   // fewer base vertices than asked, with no word.
   size_t input_vertices = 0;
   for (const ComponentMesh& part : parts_) input_vertices += part.mesh.positions.size();
+  RemeshProgress split;
+  split.step = RemeshStep::kComponents;
+  split.vertices = input_vertices;
+  split.seconds = seconds_since(split_start);
+  progress(split);
   if (options_.base_vertices > input_vertices)
     return invalid_argument("remesh: " + std::to_string(options_.base_vertices) +
                             " base vertices asked but the mesh has only " + std::to_string(input_vertices) +

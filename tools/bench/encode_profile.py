@@ -40,9 +40,11 @@ RSS_PERIOD = 0.1  # seconds between samples of the resident memory
 NUM = r"([-+0-9.eE]+)"
 # The remesher's progress lines (tools/srcodec/remesh_progress.cpp) that end a stage, with their figures.
 PATTERNS = [
+    ("components", re.compile(r"^remesh: components: (\d+) .*, " + NUM + " s$")),
     ("oversample", re.compile(r"^remesh: oversampled .*?: (\d+) vertices, " + NUM + " s$")),
     ("sites", re.compile(r"^remesh: sites: (\d+) .*, " + NUM + " s$")),
     ("base", re.compile(r"^remesh: base mesh: (\d+) vertices .*?, (\d+) triangles, " + NUM + " s$")),
+    ("refine_set_up", re.compile(r"^remesh: refinement set up: (\d+) points .*, " + NUM + " s$")),
     ("level", re.compile(r"^remesh: level (\d+): (\d+) vertices, (\d+) triangles, (\d+) Lloyd steps.*, " + NUM +
                          " s$")),
     ("splits_undone", re.compile(r"^remesh: (?:threshold|tolerance|threshold and tolerance): .*, " + NUM + " s$")),
@@ -184,9 +186,13 @@ def stages_of(lines, end, end_cpu, tail_peak, report, remesh_only):
                 # The first remesh line's own seconds started after the read, the cleaning and the split.
                 own = float(g[1]) if kind == "oversample" else float(g[-1])
                 first_remesh = stamp - own
-                add("read, clean, split components", first_remesh, "stamps", 0.0, ratio)
+                add("read, clean" if kind == "components" else "read, clean, split components", first_remesh,
+                    "stamps", 0.0, ratio)
                 remesh_cpu[0] = (first_remesh * ratio, first_remesh)
-            if kind == "oversample":
+            if kind == "components":
+                add("split into components", float(g[1]), f"{int(g[0])} components", peak, ratio)
+                remesh_sum += float(g[1])
+            elif kind == "oversample":
                 add("oversample", float(g[1]), f"{int(g[0])} vertices", peak, ratio)
                 remesh_sum += float(g[1])
             elif kind == "sites":
@@ -196,6 +202,9 @@ def stages_of(lines, end, end_cpu, tail_peak, report, remesh_only):
                 add("base mesh (collapses)", float(g[2]), f"{int(g[0])} base vertices, {int(g[1])} triangles", peak,
                     ratio)
                 remesh_sum += float(g[2])
+            elif kind == "refine_set_up":
+                add("refinement set-up", float(g[1]), f"{int(g[0])} points", peak, ratio)
+                remesh_sum += float(g[1])
             elif kind == "level":
                 add(f"level {g[0]} (Lloyd)", float(g[4]), f"{int(g[1])} vertices, {g[3]} Lloyd steps", peak, ratio)
                 remesh_sum += float(g[4])

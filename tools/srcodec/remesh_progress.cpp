@@ -57,6 +57,8 @@ std::string remesh_progress_line(const RemeshProgress& p) {
     case RemeshStep::kOversampled:
       return "oversampled (up to " + n(r->oversample_steps) + " steps per component): " + n(r->oversampled_vertices) +
              " vertices, " + n(p.seconds) + " s";
+    case RemeshStep::kComponents:
+      return "components: " + n(r->components) + " (manifold, " + n(p.vertices) + " vertices), " + n(p.seconds) + " s";
     case RemeshStep::kBaseSizeRaised:
       return "default base size raised to " + n(p.vertices) +
              " vertices: the oversampled input holds more vertices than planned";
@@ -73,6 +75,8 @@ std::string remesh_progress_line(const RemeshProgress& p) {
     case RemeshStep::kBaseMesh:
       return "base mesh: " + n(r->base_vertices) + " vertices (" + n(r->promoted_vertices) +
              " kept by the collapses), " + n(p.triangles) + " triangles, " + n(r->seconds_base) + " s";
+    case RemeshStep::kRefineSetUp:
+      return "refinement set up: " + n(p.vertices) + " points on the base mesh, " + n(p.seconds) + " s";
     case RemeshStep::kLevel:
       return level_line(*p.refine_level);
     case RemeshStep::kThresholdStops:
