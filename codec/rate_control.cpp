@@ -146,41 +146,34 @@ class KneeLadder {
     return ok_status();
   }
 
-  // The PSNRs of cuts first..last still unknown, two at a time: a cut's
-  // decode, and its measure's tree build, leave a core idle.
-  Status estimate(size_t first, size_t last) {
-    return fill(first, last, estimated_, [&](uint64_t s) { return cutter_.estimated_psnr(s); });
+  // The PSNRs of cuts a and b (placed) where still unknown, both at once: a
+  // cut's decode, and its measure's tree build, leave a core idle.
+  Status estimate(size_t a, size_t b) {
+    return fill(a, b, estimated_, [&](uint64_t s) { return cutter_.estimated_psnr(s); });
   }
-  Status measure(size_t first, size_t last) {
-    const size_t before = count_known(measured_);
-    const Status s = fill(first, last, measured_, [&](uint64_t b) { return cutter_.psnr(b, kRateControlSamples); });
-    measured_count_ += static_cast<int>(count_known(measured_) - before);
-    return s;
+  Status measure(size_t a, size_t b) {
+    measured_count_ += (measured_[a] == kUnknown) + (b != a && measured_[b] == kUnknown);
+    return fill(a, b, measured_, [&](uint64_t s) { return cutter_.psnr(s, kRateControlSamples); });
   }
 
  private:
   static constexpr double kUnknown = -std::numeric_limits<double>::infinity();
-  static size_t count_known(const std::vector<double>& v) {
-    return static_cast<size_t>(std::count_if(v.begin(), v.end(), [](double x) { return x != kUnknown; }));
-  }
+
   template <class PsnrOf>
-  Status fill(size_t first, size_t last, std::vector<double>& psnr, const PsnrOf& psnr_of) {
-    std::vector<size_t> todo;
-    for (size_t k = first; k <= last && k < cuts_.size(); ++k)
-      if (psnr[k] == kUnknown) todo.push_back(k);
-    for (size_t i = 0; i < todo.size(); i += 2) {
-      std::optional<StatusOr<double>> one, two;
-      tbb::parallel_invoke([&] { one = psnr_of(cuts_[todo[i]].segment_bytes); },
-                           [&] {
-                             if (i + 1 < todo.size()) two = psnr_of(cuts_[todo[i + 1]].segment_bytes);
-                           });
-      if (!one->ok()) return one->status();
-      psnr[todo[i]] = one->value();
-      if (two) {
-        if (!two->ok()) return two->status();
-        psnr[todo[i + 1]] = two->value();
-      }
-    }
+  Status fill(size_t a, size_t b, std::vector<double>& psnr, const PsnrOf& psnr_of) {
+    const bool do_a = psnr[a] == kUnknown, do_b = b != a && psnr[b] == kUnknown;
+    std::optional<StatusOr<double>> at_a, at_b;
+    tbb::parallel_invoke(
+        [&] {
+          if (do_a) at_a = psnr_of(cuts_[a].segment_bytes);
+        },
+        [&] {
+          if (do_b) at_b = psnr_of(cuts_[b].segment_bytes);
+        });
+    if (at_a && !at_a->ok()) return at_a->status();
+    if (at_b && !at_b->ok()) return at_b->status();
+    if (at_a) psnr[a] = at_a->value();
+    if (at_b) psnr[b] = at_b->value();
     return ok_status();
   }
 
@@ -190,52 +183,42 @@ class KneeLadder {
   int measured_count_ = 0;
 };
 
-// The first cut from `from` on whose next two steps (a file about 1.56
-// times as large) gain less than kKneeDbPerBpv dB per bit per input vertex,
-// by `psnr` (KneeLadder::estimated or measured, filled by `fill`), or the
-// whole stream. Two steps, not one: the PSNR of an embedded stream climbs
-// in stairs, as bit planes and levels begin, and one step alone can fall on
-// a flat stair.
-template <class Psnr, class Fill>
-StatusOr<size_t> first_knee(KneeLadder& ladder, size_t from, double bits_per_byte_vertex, const Psnr& psnr,
-                            const Fill& fill) {
-  for (size_t k = from;; ++k) {
-    SRCODEC_RETURN_IF_ERROR(ladder.place_to(k + 2));
-    if (k >= ladder.size()) return ladder.size() - 1;
-    const size_t ahead = std::min(k + 2, ladder.size() - 1);
-    SRCODEC_RETURN_IF_ERROR(fill(k, ahead));
-    if (ahead == k) return k;  // the whole stream: no knee before it
-    const double bpv_gained = bits_per_byte_vertex * (static_cast<double>(ladder[ahead].file_bytes) -
-                                                      static_cast<double>(ladder[k].file_bytes));
-    // An exact reproduction (infinite PSNR) gains more than any slope; a cut
-    // already exact gains nothing more.
-    if (!(psnr(ahead) - psnr(k) >= kKneeDbPerBpv * bpv_gained)) return k;
-  }
-}
-
 }  // namespace
 
 StatusOr<Knee> knee_of_stream(const StreamCutter& cutter, size_t input_vertices) {
   if (input_vertices == 0) return invalid_argument("rate control: the input has no vertices");
   const double bits_per_byte_vertex = 8.0 / static_cast<double>(input_vertices);
   KneeLadder ladder(cutter);
-  // Where the knee is, by the estimate; then the metric decides, from two
-  // cuts before it: the estimate's slopes near the knee can be off by a
-  // tenth of a dB, and the decision there is often that close.
-  SRCODEC_ASSIGN_OR_RETURN(
-      const size_t guess,
-      first_knee(ladder, 0, bits_per_byte_vertex, [&](size_t k) { return ladder.estimated(k); },
-                 [&](size_t a, size_t b) { return ladder.estimate(a, b); }));
-  const size_t from = guess >= kKneeRecheckedSteps ? guess - kKneeRecheckedSteps : 0;
-  // The cuts the metric judges when it agrees, measured two at a time up front.
-  SRCODEC_RETURN_IF_ERROR(ladder.measure(from, guess + 2));
-  SRCODEC_ASSIGN_OR_RETURN(
-      const size_t k,
-      first_knee(ladder, from, bits_per_byte_vertex, [&](size_t i) { return ladder.measured(i); },
-                 [&](size_t a, size_t b) { return ladder.measure(a, b); }));
-  Knee at = ladder[k];
-  at.psnr = ladder.measured(k);
-  at.whole_stream = k + 1 == ladder.size() && ladder.complete();
+  // Each cut judged by the two steps after it (a file about 1.56 times as
+  // large): the PSNR of an embedded stream climbs in stairs, as bit planes
+  // and levels begin, and one step alone can fall on a flat stair.
+  for (size_t k = 0;; ++k) {
+    SRCODEC_RETURN_IF_ERROR(ladder.place_to(k + 2));
+    const size_t ahead = std::min(k + 2, ladder.size() - 1);
+    if (ahead == k) {  // the whole stream: no knee before it
+      SRCODEC_RETURN_IF_ERROR(ladder.measure(k, k));
+      break;
+    }
+    const double needed = kKneeDbPerBpv * bits_per_byte_vertex *
+                          (static_cast<double>(ladder[ahead].file_bytes) - static_cast<double>(ladder[k].file_bytes));
+    // A gain the estimate puts clearly above what is needed passes unmeasured;
+    // anywhere near it, or below, the metric decides.
+    SRCODEC_RETURN_IF_ERROR(ladder.estimate(k, ahead));
+    if (ladder.estimated(ahead) - ladder.estimated(k) >= needed + kKneeEstimateMargin) continue;
+    SRCODEC_RETURN_IF_ERROR(ladder.measure(k, ahead));
+    // An exact reproduction (infinite PSNR) gains more than any slope; a cut
+    // already exact gains nothing more.
+    if (!(ladder.measured(ahead) - ladder.measured(k) >= needed)) {
+      Knee at = ladder[k];
+      at.psnr = ladder.measured(k);
+      at.cuts = ladder.measured_count();
+      at.estimated_cuts = static_cast<int>(ladder.size());
+      return at;
+    }
+  }
+  Knee at = ladder[ladder.size() - 1];
+  at.psnr = ladder.measured(ladder.size() - 1);
+  at.whole_stream = true;
   at.cuts = ladder.measured_count();
   at.estimated_cuts = static_cast<int>(ladder.size());
   return at;

@@ -103,9 +103,10 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: knee_estimate MESH... [--runs N] [--ladder]\n");
     return 2;
   }
-  std::printf("| mesh | cuts | largest \\|estimate - measure\\| (dB), all cuts / last 6 | knee: estimate alone | "
+  std::printf("| mesh | cuts | largest \\|estimate - measure\\| (dB), all cuts / last 6 | largest two-step gain "
+              "difference (dB) | knee: estimate alone | "
               "knee: metric alone | knee kept (cuts measured) | s: metric alone / knee_of_stream | ratio |\n");
-  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   std::string ladders;
   for (const std::string& path : meshes) {
     std::fprintf(stderr, "%s: remesh and encode ...\n", path.c_str());
@@ -165,11 +166,15 @@ int main(int argc, char** argv) {
       kept_s.push_back(one);
       ratios.push_back(all / one);
     }
-    double worst = 0, worst_top = 0;
+    double worst = 0, worst_top = 0, worst_gain = 0;
     for (size_t k = 0; k < ladder.size(); ++k) {
       const double d = std::abs(ladder[k].estimated - ladder[k].measured);
       worst = std::max(worst, d);
       if (k + 6 >= ladder.size()) worst_top = std::max(worst_top, d);
+      const size_t ahead = std::min(k + 2, ladder.size() - 1);
+      const double gain_error = (ladder[ahead].estimated - ladder[k].estimated) -
+                                (ladder[ahead].measured - ladder[k].measured);
+      worst_gain = std::max(worst_gain, std::abs(gain_error));
     }
     const size_t by_estimate = knee_by(ladder, n, &Rung::estimated);
     const size_t by_metric = knee_by(ladder, n, &Rung::measured);
@@ -181,8 +186,8 @@ int main(int argc, char** argv) {
                     ladder[k].measured);
       return std::string(t);
     };
-    std::printf("| %s | %zu | %.2f / %.2f | %s | %s | %s (%d) | %.2f / %.2f | %.2fx |\n", name_of(path).c_str(),
-                ladder.size(), worst, worst_top, cut_text(by_estimate).c_str(), cut_text(by_metric).c_str(),
+    std::printf("| %s | %zu | %.2f / %.2f | %.2f | %s | %s | %s (%d) | %.2f / %.2f | %.2fx |\n",
+                name_of(path).c_str(), ladder.size(), worst, worst_top, worst_gain, cut_text(by_estimate).c_str(), cut_text(by_metric).c_str(),
                 kept_k < ladder.size() ? cut_text(kept_k).c_str() : "not on the ladder", kept.cuts, median(measured_s),
                 median(kept_s), median(ratios));
     std::fflush(stdout);
