@@ -54,7 +54,7 @@ TEST(CodecCli, EncodeAtAByteBudgetThenDecodeEveryLevelAndPrefix) {
 }
 
 // With no rate option, encode keeps the knee of the rate-distortion curve
-// (codec/rate_control.h) and says so.
+// (codec/rate_control.h) and says so; it says each stage as it ends.
 TEST(CodecCli, EncodeWithNoRateKeepsTheKnee) {
   test::ScratchDir dir;
   const std::string srm = dir.file("spot.srm");
@@ -63,6 +63,16 @@ TEST(CodecCli, EncodeWithNoRateKeepsTheKnee) {
   EXPECT_NE(e.out.find("\"rate\": \"the knee at 1 dB/bpv\""), std::string::npos) << e.out;
   EXPECT_NE(e.err.find("no rate option given"), std::string::npos) << e.err;
   EXPECT_NE(e.err.find(" measured: keeping "), std::string::npos) << e.err;
+  // Every stage that can take long on a large input says when it is done,
+  // in the order they run.
+  size_t at = 0;
+  for (const char* line : {"encode: read: ", "remesh: components: ", "remesh: oversampled ", "remesh: sites: ",
+                           "remesh: base mesh: ", "remesh: refinement set up: ", "remesh: level 1: ",
+                           "remesh: level 2: ", "remesh: fit: ", "remesh: slivers: ", "cuts estimated, "}) {
+    const size_t found = e.err.find(line, at);
+    EXPECT_NE(found, std::string::npos) << "no \"" << line << "\" after the lines before it:\n" << e.err;
+    if (found != std::string::npos) at = found;
+  }
   EXPECT_LT(json_number(e.out, "bytes"), json_number(e.out, "full_stream_bytes"));
   EXPECT_GT(json_number(e.out, "bytes"), json_number(e.out, "minimum_bytes"));
   EXPECT_EQ(static_cast<double>(read_file_bytes(srm)->size()), json_number(e.out, "bytes"));
