@@ -3,7 +3,7 @@
 // mesh: the default remesh and its whole stream, then the ladder of cuts
 // knee_of_stream places, each cut's estimated and measured PSNR, the knee
 // each gives alone, and the knee knee_of_stream keeps; then knee_of_stream
-// against the search it replaced (the metric on every cut up to its knee's
+// against the search by the metric alone (every cut measured up to its knee's
 // two steps, two cuts at a time), timed alternately (median of --runs, and
 // the median of the per-run ratios).
 // Usage: knee_estimate MESH... [--runs N]
@@ -121,7 +121,7 @@ int main(int argc, char** argv) {
     for (int r = 0; r < runs; ++r) {
       std::fprintf(stderr, "%s: run %d of %d\n", path.c_str(), r + 1, runs);
       double all = 0, one = 0;
-      // The search as it was before the estimate: the metric on every cut,
+      // The search by the metric alone: every cut measured,
       // two at a time, until its knee's two steps are measured; then the
       // rest of the ladder, untimed, for the table.
       const auto every_cut = [&] {
