@@ -11,7 +11,7 @@
 // squares add. Only the displacement across the surface counts (along it,
 // the surface stays where it was); it is linear over each triangle, so its
 // mean square there is exact (the P1 finite-element mass matrix).
-// docs/codec_design.md ("The default rate") compares it with the metric.
+// docs/codec_design.md ("How the knee is found") compares it with the metric.
 #pragma once
 
 #include <Eigen/Core>
