@@ -110,6 +110,23 @@ StatusOr<uint64_t> segment_bytes_for_psnr(const StreamCutter& cutter, double tar
   return hi;
 }
 
+StatusOr<Knee> next_ladder_cut(const StreamCutter& cutter, const Knee* last) {
+  Knee c;
+  if (last) {
+    const auto budget = static_cast<uint64_t>(std::ceil(static_cast<double>(last->file_bytes) * kKneeCutRatio));
+    SRCODEC_ASSIGN_OR_RETURN(uint64_t within, cutter.segment_bytes_within(budget));
+    c.segment_bytes = std::max(within, last->segment_bytes + 1);
+  }
+  SRCODEC_ASSIGN_OR_RETURN(std::vector<uint8_t> file, cutter.cut(c.segment_bytes));
+  c.file_bytes = file.size();
+  return c;
+}
+
+double knee_gain_needed(const Knee& from, const Knee& to, size_t input_vertices) {
+  return kKneeDbPerBpv * (8.0 / static_cast<double>(input_vertices)) *
+         (static_cast<double>(to.file_bytes) - static_cast<double>(from.file_bytes));
+}
+
 namespace {
 
 // The ladder of cuts knee_of_stream walks, each file kKneeCutRatio times
@@ -130,20 +147,21 @@ class KneeLadder {
   // where a cut lies depends only on the sizes of the files before it.
   Status place_to(size_t k) {
     while (cuts_.size() <= k && !complete()) {
-      Knee c;
-      if (!cuts_.empty()) {
-        const Knee& last = cuts_.back();
-        const auto budget = static_cast<uint64_t>(std::ceil(static_cast<double>(last.file_bytes) * kKneeCutRatio));
-        SRCODEC_ASSIGN_OR_RETURN(uint64_t within, cutter_.segment_bytes_within(budget));
-        c.segment_bytes = std::max(within, last.segment_bytes + 1);
-      }
-      SRCODEC_ASSIGN_OR_RETURN(std::vector<uint8_t> file, cutter_.cut(c.segment_bytes));
-      c.file_bytes = file.size();
+      SRCODEC_ASSIGN_OR_RETURN(Knee c, next_ladder_cut(cutter_, cuts_.empty() ? nullptr : &cuts_.back()));
       cuts_.push_back(c);
       estimated_.push_back(kUnknown);
       measured_.push_back(kUnknown);
     }
     return ok_status();
+  }
+
+  // Cut k kept: its measured PSNR, and the counts of the search.
+  Knee kept(size_t k) const {
+    Knee at = cuts_[k];
+    at.psnr = measured_[k];
+    at.cuts = measured_count_;
+    at.estimated_cuts = static_cast<int>(cuts_.size());
+    return at;
   }
 
   // The PSNRs of cuts a and b (placed) where still unknown, both at once: a
@@ -187,7 +205,6 @@ class KneeLadder {
 
 StatusOr<Knee> knee_of_stream(const StreamCutter& cutter, size_t input_vertices) {
   if (input_vertices == 0) return invalid_argument("rate control: the input has no vertices");
-  const double bits_per_byte_vertex = 8.0 / static_cast<double>(input_vertices);
   KneeLadder ladder(cutter);
   // Each cut judged by the two steps after it (a file about 1.56 times as
   // large): the PSNR of an embedded stream climbs in stairs, as bit planes
@@ -197,10 +214,11 @@ StatusOr<Knee> knee_of_stream(const StreamCutter& cutter, size_t input_vertices)
     const size_t ahead = std::min(k + 2, ladder.size() - 1);
     if (ahead == k) {  // the whole stream: no knee before it
       SRCODEC_RETURN_IF_ERROR(ladder.measure(k, k));
-      break;
+      Knee at = ladder.kept(k);
+      at.whole_stream = true;
+      return at;
     }
-    const double needed = kKneeDbPerBpv * bits_per_byte_vertex *
-                          (static_cast<double>(ladder[ahead].file_bytes) - static_cast<double>(ladder[k].file_bytes));
+    const double needed = knee_gain_needed(ladder[k], ladder[ahead], input_vertices);
     // A gain the estimate puts clearly above what is needed passes unmeasured;
     // anywhere near it, or below, the metric decides.
     SRCODEC_RETURN_IF_ERROR(ladder.estimate(k, ahead));
@@ -208,20 +226,8 @@ StatusOr<Knee> knee_of_stream(const StreamCutter& cutter, size_t input_vertices)
     SRCODEC_RETURN_IF_ERROR(ladder.measure(k, ahead));
     // An exact reproduction (infinite PSNR) gains more than any slope; a cut
     // already exact gains nothing more.
-    if (!(ladder.measured(ahead) - ladder.measured(k) >= needed)) {
-      Knee at = ladder[k];
-      at.psnr = ladder.measured(k);
-      at.cuts = ladder.measured_count();
-      at.estimated_cuts = static_cast<int>(ladder.size());
-      return at;
-    }
+    if (!(ladder.measured(ahead) - ladder.measured(k) >= needed)) return ladder.kept(k);
   }
-  Knee at = ladder[ladder.size() - 1];
-  at.psnr = ladder.measured(ladder.size() - 1);
-  at.whole_stream = true;
-  at.cuts = ladder.measured_count();
-  at.estimated_cuts = static_cast<int>(ladder.size());
-  return at;
 }
 
 }  // namespace srcodec

@@ -97,6 +97,15 @@ struct Knee {
   bool whole_stream = false;  // no step gained less than kKneeDbPerBpv
 };
 
+// The knee search's ladder: the cut after `last`, whose file is
+// kKneeCutRatio times as large (and keeps at least one segment byte more),
+// or the smallest file when `last` is null; its PSNR left 0.
+StatusOr<Knee> next_ladder_cut(const StreamCutter& cutter, const Knee* last);
+
+// The PSNR gain (dB) the knee asks of the step from cut `from` to cut `to`:
+// kKneeDbPerBpv for each bit per input vertex the step adds.
+double knee_gain_needed(const Knee& from, const Knee& to, size_t input_vertices);
+
 // How far above the gain a step needs the estimate must put it for the
 // step to pass unmeasured (dB over two steps). Over the corpus the
 // estimate's two-step gains are off the metric's by up to 1.2 dB, mostly

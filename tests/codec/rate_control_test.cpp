@@ -86,12 +86,7 @@ TEST(RateControl, EstimateLeadsToTheMetricsKnee) {
     // The ladder knee_of_stream places, every cut measured.
     std::vector<Knee> ladder;
     for (;;) {
-      Knee c;
-      if (!ladder.empty())
-        c.segment_bytes = std::max(cutter.segment_bytes_within(static_cast<uint64_t>(
-                                       std::ceil(static_cast<double>(ladder.back().file_bytes) * kKneeCutRatio))).value(),
-                                   ladder.back().segment_bytes + 1);
-      c.file_bytes = cutter.cut(c.segment_bytes)->size();
+      Knee c = next_ladder_cut(cutter, ladder.empty() ? nullptr : &ladder.back()).value();
       c.psnr = cutter.psnr(c.segment_bytes, kRateControlSamples).value();
       const double estimated = cutter.estimated_psnr(c.segment_bytes).value();
       EXPECT_NEAR(estimated, c.psnr, 1.5) << "cut of " << c.file_bytes << " bytes";
@@ -105,7 +100,7 @@ TEST(RateControl, EstimateLeadsToTheMetricsKnee) {
     size_t k = 0;
     for (; k + 1 < ladder.size(); ++k) {
       const size_t ahead = std::min(k + 2, ladder.size() - 1);
-      if (!(slope(ladder[k], ladder[ahead].psnr, ladder[ahead].file_bytes, n) >= kKneeDbPerBpv)) break;
+      if (!(ladder[ahead].psnr - ladder[k].psnr >= knee_gain_needed(ladder[k], ladder[ahead], n))) break;
     }
     StatusOr<Knee> knee = knee_of_stream(cutter, n);
     ASSERT_TRUE(knee.ok()) << knee.status().message();

@@ -37,8 +37,8 @@ T value_or_exit(StatusOr<T> s, const std::string& what) {
   return std::move(s).value();
 }
 
-struct Rung {
-  uint64_t segment_bytes = 0, file_bytes = 0;
+// A cut of the ladder with both its PSNRs.
+struct Rung : Knee {
   double estimated = 0, measured = 0;
 };
 
@@ -48,12 +48,7 @@ std::vector<Rung> ladder_of(const StreamCutter& cutter) {
   std::vector<Rung> ladder;
   for (;;) {
     Rung r;
-    if (!ladder.empty()) {
-      const auto budget = static_cast<uint64_t>(std::ceil(static_cast<double>(ladder.back().file_bytes) * kKneeCutRatio));
-      r.segment_bytes =
-          std::max(value_or_exit(cutter.segment_bytes_within(budget), "cut"), ladder.back().segment_bytes + 1);
-    }
-    r.file_bytes = value_or_exit(cutter.cut(r.segment_bytes), "cut").size();
+    static_cast<Knee&>(r) = value_or_exit(next_ladder_cut(cutter, ladder.empty() ? nullptr : &ladder.back()), "cut");
     ladder.push_back(r);
     if (r.segment_bytes >= cutter.segment_bytes()) return ladder;
   }
@@ -63,8 +58,7 @@ std::vector<Rung> ladder_of(const StreamCutter& cutter) {
 size_t knee_by(const std::vector<Rung>& ladder, size_t vertices, double Rung::*psnr) {
   for (size_t k = 0; k + 1 < ladder.size(); ++k) {
     const size_t ahead = std::min(k + 2, ladder.size() - 1);
-    const double bpv = 8.0 * (static_cast<double>(ladder[ahead].file_bytes) - ladder[k].file_bytes) / vertices;
-    if (!(ladder[ahead].*psnr - ladder[k].*psnr >= kKneeDbPerBpv * bpv)) return k;
+    if (!(ladder[ahead].*psnr - ladder[k].*psnr >= knee_gain_needed(ladder[k], ladder[ahead], vertices))) return k;
   }
   return ladder.size() - 1;
 }
@@ -142,8 +136,7 @@ int main(int argc, char** argv) {
           const size_t ahead = std::min(k + 2, ladder.size() - 1);
           for (; measured <= ahead; measured += 2) measure_pair(measured);
           if (ahead == k) break;
-          const double bpv = 8.0 * (static_cast<double>(ladder[ahead].file_bytes) - ladder[k].file_bytes) / n;
-          if (!(ladder[ahead].measured - ladder[k].measured >= kKneeDbPerBpv * bpv)) break;
+          if (!(ladder[ahead].measured - ladder[k].measured >= knee_gain_needed(ladder[k], ladder[ahead], n))) break;
         }
         all = seconds_of(start);
         for (; measured < ladder.size(); measured += 2) measure_pair(measured);
