@@ -229,6 +229,7 @@ class Collapser {
     removed_.assign(n, 0);
     changed_.assign(n, 1);
     ring_slot_.assign(n, -1);
+    in_ring_.assign(n, 0);
   }
 
   Status build(const TriangleMesh& mesh) {
@@ -417,7 +418,7 @@ class Collapser {
       }
     }
     // The link condition.
-    if (!om_.is_collapse_ok(h)) {
+    if (!link_condition(m)) {
       ++report_.refused_link;
       return false;
     }
@@ -489,6 +490,41 @@ class Collapser {
       for (size_t j = 0; j < moving_.size(); ++j) place_in_fan(moving_[j], moving_at_[j], fw);
     }
     return true;
+  }
+
+  // The link condition for collapsing v into w = ring_[m] (Dey, Edelsbrunner
+  // et al., "Topology preserving edge contraction", 1999): v and w share no
+  // neighbour but the apexes of the edge's faces, which must differ and not
+  // be ears held by two boundary edges; an inner edge may not join two
+  // boundary vertices. The same answers as OpenMesh's is_collapse_ok, from
+  // the 1-ring of v already gathered instead of three walks around v and w.
+  bool link_condition(int32_t m) {
+    const HalfedgeHandle h = out_[m];
+    const HalfedgeHandle o = om_.opposite_halfedge_handle(h);
+    // The apex of the face on each side of the edge (-1 on the boundary),
+    // refused when that face's two other edges are both on the boundary.
+    auto apex = [&](HalfedgeHandle e, int32_t& vertex) {
+      vertex = -1;
+      if (om_.is_boundary(e)) return true;
+      const HalfedgeHandle e1 = om_.next_halfedge_handle(e), e2 = om_.next_halfedge_handle(e1);
+      vertex = om_.to_vertex_handle(e1).idx();
+      return !(om_.is_boundary(om_.opposite_halfedge_handle(e1)) && om_.is_boundary(om_.opposite_halfedge_handle(e2)));
+    };
+    int32_t left = -1, right = -1;
+    if (!apex(h, left) || !apex(o, right) || left == right) return false;
+    const int32_t w = ring_[m];
+    for (int32_t r : ring_) in_ring_[r] = 1;
+    bool shared = false;
+    for (const VertexHandle u : om_.vv_range(VertexHandle(w))) {
+      const int32_t x = u.idx();
+      if (in_ring_[x] && x != left && x != right) {
+        shared = true;
+        break;
+      }
+    }
+    for (int32_t r : ring_) in_ring_[r] = 0;
+    if (shared) return false;
+    return !(boundary_ && om_.is_boundary(VertexHandle(w)) && !om_.is_boundary(h) && !om_.is_boundary(o));
   }
 
   // flat_[i] = r_i under z -> z^a, a = 2π / (angle sum) inside and π / (angle
@@ -594,6 +630,7 @@ class Collapser {
   std::vector<Eigen::Vector3d> bary_;            // per removed input vertex
   std::vector<char> is_site_, removed_, changed_;
   std::vector<int32_t> ring_slot_;  // scratch: index in ring_ of a vertex, else -1
+  std::vector<char> in_ring_;       // scratch: 1 for the vertices of ring_ during link_condition
 
   // Scratch for the vertex being removed.
   bool boundary_ = false;
