@@ -18,25 +18,14 @@
 #include "remesh/triangle_tree.h"
 
 namespace srcodec {
-namespace {
 
-// ---------------------------------------------------------------------------
-// A mesh reduced to what has surface: the triangles of positive area.
-
-struct Surface {
-  const TriangleMesh* mesh = nullptr;
-  std::vector<uint32_t> faces;  // indices into mesh->triangles, positive area only
-  std::vector<double> areas;    // area of faces[i]
-  double total_area = 0;
-};
-
-StatusOr<Surface> make_surface(const TriangleMesh& mesh, const char* role) {
+StatusOr<MeasuredSurface> measured_surface(const TriangleMesh& mesh, const char* role) {
   const size_t num_vertices = mesh.positions.size();
   if (mesh.triangles.size() > std::numeric_limits<uint32_t>::max()) {
     return invalid_mesh(std::string(role) + " mesh has too many triangles (" +
                         std::to_string(mesh.triangles.size()) + ")");
   }
-  Surface s;
+  MeasuredSurface s;
   s.mesh = &mesh;
   for (size_t f = 0; f < mesh.triangles.size(); ++f) {
     const auto& t = mesh.triangles[f];
@@ -67,13 +56,15 @@ StatusOr<Surface> make_surface(const TriangleMesh& mesh, const char* role) {
   return s;
 }
 
+namespace {
+
 // ---------------------------------------------------------------------------
 // Area-uniform, stratified sampling: triangle i gets floor(e_i) samples plus
 // one more with probability frac(e_i), where e_i = area_i / total * n, so the
 // expected count is exactly n and every triangle is represented in proportion.
 // Within a triangle, point_in_triangle (format/area_sampling.h).
 
-std::vector<Eigen::Vector3d> sample_surface(const Surface& s, size_t n, uint64_t seed) {
+std::vector<Eigen::Vector3d> sample_surface(const MeasuredSurface& s, size_t n, uint64_t seed) {
   SplitMix64 rng(seed);
   std::vector<Eigen::Vector3d> samples;
   samples.reserve(n + n / 16 + 16);
@@ -203,7 +194,7 @@ StatusOr<SurfaceReference> SurfaceReference::build(const TriangleMesh& reference
                                                    const SurfaceDistanceOptions& options,
                                                    const NearestSurfacePointBuilder& build_search) {
   SRCODEC_RETURN_IF_ERROR(check_samples(options));
-  SRCODEC_ASSIGN_OR_RETURN(const Surface surface, make_surface(reference, "reference"));
+  SRCODEC_ASSIGN_OR_RETURN(const MeasuredSurface surface, measured_surface(reference, "reference"));
   const SampleSeeds seeds = sample_seeds(options.seed);
   SurfaceReference out;
   out.build_search_ = build_search;
@@ -216,7 +207,7 @@ StatusOr<SurfaceReference> SurfaceReference::build(const TriangleMesh& reference
 }
 
 StatusOr<SurfaceDistance> SurfaceReference::distance_to(const TriangleMesh& test) const {
-  SRCODEC_ASSIGN_OR_RETURN(const Surface surface, make_surface(test, "test"));
+  SRCODEC_ASSIGN_OR_RETURN(const MeasuredSurface surface, measured_surface(test, "test"));
   // Both serial (or mostly), so at once.
   std::vector<Eigen::Vector3d> test_samples;
   std::unique_ptr<NearestSurfacePoint> test_search;
@@ -238,8 +229,8 @@ StatusOr<SurfaceDistance> surface_distance(const TriangleMesh& reference, const 
                                            const SurfaceDistanceOptions& options,
                                            const NearestSurfacePointBuilder& build_search) {
   SRCODEC_RETURN_IF_ERROR(check_samples(options));
-  SRCODEC_ASSIGN_OR_RETURN(const Surface ref_surface, make_surface(reference, "reference"));
-  SRCODEC_ASSIGN_OR_RETURN(const Surface test_surface, make_surface(test, "test"));
+  SRCODEC_ASSIGN_OR_RETURN(const MeasuredSurface ref_surface, measured_surface(reference, "reference"));
+  SRCODEC_ASSIGN_OR_RETURN(const MeasuredSurface test_surface, measured_surface(test, "test"));
   const SampleSeeds seeds = sample_seeds(options.seed);
   const size_t n = options.samples_per_surface;
   const std::vector<Eigen::Vector3d> ref_samples = sample_surface(ref_surface, n, seeds.reference);

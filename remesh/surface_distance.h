@@ -41,6 +41,20 @@ struct SurfaceDistance {
   double psnr = 0;       // 20 log10(diag / rms); +inf when rms == 0
 };
 
+// A mesh reduced to what has surface: the triangles of positive area, after
+// checking that every index is valid and every used vertex finite. Both the
+// metric and the visual measure (tools/measure/visual_difference.h) see a
+// mesh through this. Holds a pointer to the mesh, which must outlive it.
+struct MeasuredSurface {
+  const TriangleMesh* mesh = nullptr;
+  std::vector<uint32_t> faces;  // indices into mesh->triangles, positive area only
+  std::vector<double> areas;    // area of faces[i]
+  double total_area = 0;
+};
+// Fails with kInvalidMesh, naming `role` ("reference", "test") and the
+// triangle or vertex, on a bad index, a non-finite vertex or no surface.
+StatusOr<MeasuredSurface> measured_surface(const TriangleMesh& mesh, const char* role);
+
 // What the metric asks of a search structure: the exact squared distance
 // from a point to the nearest of its triangles. Queried from several
 // threads at once, so it must be thread-safe once built.

@@ -78,12 +78,21 @@ def summary_row(name, s):
 
 
 def csv_table(path):
-    lines = ["| codec | setting | bytes | bpv | PSNR (dB) | RMS | Hausdorff | encode ms | decode ms |",
-             "|---|---|---:|---:|---:|---:|---:|---:|---:|"]
+    lines = ["| codec | setting | bytes | bpv | PSNR (dB) | RMS | Hausdorff | normal angle | defect pixels | "
+             "turned over | depth PSNR | encode ms | decode ms |",
+             "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+
+    def visual(r, column, form):
+        value = float(r.get(column) or "nan")
+        return form.format(value) if value == value else "n/a"
+
     with open(path, newline="") as f:
         for r in csv.DictReader(f):
             lines.append(f"| {r['codec']} | {r['setting']} | {r['bytes']} | {float(r['bpv']):.3f} | "
                          f"{float(r['psnr']):.2f} | {float(r['rms']):.4g} | {float(r['hausdorff']):.4g} | "
+                         f"{visual(r, 'normal_deg', '{:.2f} deg')} | "
+                         f"{visual(r, 'defect_share', '{:.3%}')} | {visual(r, 'turned_over_share', '{:.4%}')} | "
+                         f"{visual(r, 'depth_psnr', '{:.1f} dB')} | "
                          f"{float(r['encode_ms']):.1f} | {float(r['decode_ms']):.1f} |")
     return lines
 

@@ -92,9 +92,22 @@ TEST(Cli, DracoThenCompareOnSample) {
   EXPECT_LT(psnr, 95);
   EXPECT_NEAR(json_number(c.out, "diag"), 15.7572, 1e-3);
 
+  // What a viewer sees: 12 bits leave small differences in shading, none turned over.
+  EXPECT_GT(json_number(c.out, "mean_normal_degrees"), 0.0);
+  EXPECT_LT(json_number(c.out, "mean_normal_degrees"), 5.0);
+  EXPECT_LT(json_number(c.out, "defect_share"), 0.01);
+  EXPECT_EQ(json_number(c.out, "turned_over_share"), 0.0);
+  EXPECT_EQ(json_number(c.out, "views"), 16);
+
   auto self = run_srcodec("compare --json --samples 20000 " + q(sample) + " " + q(sample));
   ASSERT_EQ(self.exit_code, 0) << self.err;
   EXPECT_LT(json_number(self.out, "rms"), 1e-12 * 15.7572);  // rounding only
+  EXPECT_EQ(json_number(self.out, "mean_normal_degrees"), 0.0);
+  EXPECT_EQ(json_number(self.out, "defect_share"), 0.0);
+
+  auto plain = run_srcodec("compare --no-visual --samples 20000 " + q(sample) + " " + q(sample));
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_EQ(plain.out.find("views"), std::string::npos) << plain.out;
 }
 
 TEST(Cli, RemeshSampleReportsEveryLevel) {

@@ -83,7 +83,8 @@ TEST_F(RdCli, WritesTheCsvWithItsColumnsAndOneRowPerPoint) {
   std::vector<std::string> header;
   const std::vector<CsvRow> rows = read_csv(out("rd.csv"), &header);
   EXPECT_EQ(header, (std::vector<std::string>{"codec", "setting", "bytes", "bpv", "psnr", "rms", "hausdorff",
-                                              "encode_ms", "decode_ms"}));
+                                              "encode_ms", "decode_ms", "normal_deg", "defect_share", "depth_psnr",
+                                              "turned_over_share"}));
   int srcodec = 0, draco = 0;
   double previous_bytes = 0;
   for (const CsvRow& r : rows) {
@@ -94,6 +95,13 @@ TEST_F(RdCli, WritesTheCsvWithItsColumnsAndOneRowPerPoint) {
     EXPECT_GE(std::stod(r.at("hausdorff")), std::stod(r.at("rms")));
     EXPECT_GT(std::stod(r.at("encode_ms")), 0);
     EXPECT_GT(std::stod(r.at("decode_ms")), 0);
+    // The visual measure: every figure present and in its range.
+    const double angle = std::stod(r.at("normal_deg")), defects = std::stod(r.at("defect_share"));
+    const double turned = std::stod(r.at("turned_over_share"));
+    EXPECT_TRUE(angle > 0 && angle < 90) << r.at("setting") << " " << angle;
+    EXPECT_TRUE(defects >= 0 && defects < 0.5) << r.at("setting") << " " << defects;
+    EXPECT_TRUE(turned >= 0 && turned < 0.05) << r.at("setting") << " " << turned;
+    EXPECT_GT(std::stod(r.at("depth_psnr")), 20) << r.at("setting");
     if (r.at("codec") == "srcodec") {
       ++srcodec;
       EXPECT_EQ(r.at("setting").rfind("bytes=", 0), 0u) << r.at("setting");
@@ -109,13 +117,18 @@ TEST_F(RdCli, WritesTheCsvWithItsColumnsAndOneRowPerPoint) {
   }
   EXPECT_EQ(srcodec, 10) << "--points defaults to 10";
   EXPECT_EQ(draco, 11) << "quantization bits 6..16";
-  // The last srcodec point is the whole stream: the best PSNR of the sweep.
+  // The last srcodec point is the whole stream: the best PSNR of the sweep,
+  // and what looks most like the input.
   EXPECT_GT(std::stod(rows[9].at("psnr")), std::stod(rows[0].at("psnr")) + 5.0);
+  EXPECT_LT(std::stod(rows[9].at("normal_deg")), std::stod(rows[0].at("normal_deg")));
+  EXPECT_LT(std::stod(rows[9].at("defect_share")), std::stod(rows[0].at("defect_share")));
+  EXPECT_LT(std::stod(rows[20].at("normal_deg")), std::stod(rows[10].at("normal_deg")));  // Draco 16 bits against 6
 }
 
 TEST_F(RdCli, PrintsTheSummaryAndDrawsThePlot) {
   ASSERT_EQ(first_->exit_code, 0) << first_->err;
-  for (const char* line : {"BD-rate srcodec vs draco:", "bytes srcodec/draco: 50 dB", "crossover", "time srcodec/draco:"})
+  for (const char* line : {"BD-rate srcodec vs draco:", "bytes srcodec/draco: 50 dB", "crossover", "seen at 70 dB",
+                           "time srcodec/draco:"})
     EXPECT_NE(first_->out.find(line), std::string::npos) << line << " in\n" << first_->out;
   EXPECT_NE(first_->err.find("rd: srcodec bytes="), std::string::npos) << "progress on stderr";
   EXPECT_NE(first_->err.find("rd: draco qp=16"), std::string::npos);
@@ -163,6 +176,7 @@ TEST_F(RdCli, ReproducibleAndAFailingPlotIsAWarning) {
   EXPECT_EQ(second.out.front(), '{');
   EXPECT_EQ(std::count(second.out.begin(), second.out.end(), '\n'), 1) << second.out;
   EXPECT_NE(second.out.find("\"bd_rate\": "), std::string::npos);
+  EXPECT_NE(second.out.find("\"seen_at_equal_bytes\": "), std::string::npos);
   EXPECT_EQ(json_number(second.out, "input_vertices"), kSpotVertices);
 
   std::vector<std::string> h1, h2;
@@ -177,7 +191,8 @@ TEST_F(RdCli, ReproducibleAndAFailingPlotIsAWarning) {
 TEST(RdCliArguments, PrefixCutsAreExactPrefixes) {
   test::ScratchDir dir;
   auto r = run_srcodec("rd " + q(test::source_path("data/spot.obj")) +
-                       " --levels 1 --points 3 --samples 5000 --cut prefix --no-plot -q -o " + q(dir.file("p")));
+                       " --levels 1 --points 3 --samples 5000 --cut prefix --no-plot --no-visual -q -o " +
+                       q(dir.file("p")));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(r.err.empty()) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("p/rd.png")));
@@ -185,6 +200,9 @@ TEST(RdCliArguments, PrefixCutsAreExactPrefixes) {
   const std::vector<CsvRow> rows = read_csv(dir.file("p/rd.csv"), &header);
   ASSERT_EQ(rows.size(), 3u + 11u);
   for (size_t i = 0; i < 3; ++i) EXPECT_EQ(rows[i].at("setting"), "prefix=" + rows[i].at("bytes"));
+  for (const CsvRow& row : rows)  // --no-visual
+    for (const char* column : {"normal_deg", "defect_share", "depth_psnr", "turned_over_share"})
+      EXPECT_EQ(row.at(column), "nan") << column;
 }
 
 TEST(RdCliArguments, BadOptionsAndInputsFailWithOneLine) {

@@ -68,38 +68,45 @@ using Primitive = CGAL::AABB_primitive<uint32_t, FaceTriangleMap, FaceCornerMap,
 using Traits = CGAL::AABB_traits<Kernel, Primitive>;
 using Tree = CGAL::AABB_tree<Traits>;
 
+}  // namespace
+
+struct CgalFaceSearch::Search {
+  Tree tree;
+};
+
 // Builds the tree and its KD tree of hints eagerly: CGAL builds both lazily
 // on the first query otherwise, which must not happen inside the parallel
 // loop. After this the tree is only read, and queries may run concurrently.
-class CgalSearch final : public NearestSurfacePoint {
- public:
-  CgalSearch(const TriangleMesh& mesh, const std::vector<uint32_t>& faces) {
-    tree_.insert(faces.begin(), faces.end(), FaceTriangleMap{&mesh}, FaceCornerMap{&mesh});
-    tree_.build();
-    std::vector<Tree::Point_and_primitive_id> hints;
-    hints.reserve(faces.size() / kHintStride + 1);
-    for (size_t i = 0; i < faces.size(); i += kHintStride) {
-      const auto& t = mesh.triangles[faces[i]];
-      const Eigen::Vector3d centroid = (mesh.positions[static_cast<size_t>(t[0])] +
-                                        mesh.positions[static_cast<size_t>(t[1])] +
-                                        mesh.positions[static_cast<size_t>(t[2])]) /
-                                       3.0;
-      hints.emplace_back(to_point(centroid), faces[i]);
-    }
-    tree_.accelerate_distance_queries(hints.begin(), hints.end());
+CgalFaceSearch::CgalFaceSearch(const TriangleMesh& mesh, const std::vector<uint32_t>& faces)
+    : search_(std::make_unique<Search>()) {
+  Tree& tree = search_->tree;
+  tree.insert(faces.begin(), faces.end(), FaceTriangleMap{&mesh}, FaceCornerMap{&mesh});
+  tree.build();
+  std::vector<Tree::Point_and_primitive_id> hints;
+  hints.reserve(faces.size() / kHintStride + 1);
+  for (size_t i = 0; i < faces.size(); i += kHintStride) {
+    const auto& t = mesh.triangles[faces[i]];
+    const Eigen::Vector3d centroid = (mesh.positions[static_cast<size_t>(t[0])] +
+                                      mesh.positions[static_cast<size_t>(t[1])] +
+                                      mesh.positions[static_cast<size_t>(t[2])]) /
+                                     3.0;
+    hints.emplace_back(to_point(centroid), faces[i]);
   }
-  double squared_distance(const Eigen::Vector3d& p) const override {
-    return tree_.squared_distance(to_point(p));  // hint from the KD tree
-  }
+  tree.accelerate_distance_queries(hints.begin(), hints.end());
+}
 
- private:
-  Tree tree_;
-};
+CgalFaceSearch::~CgalFaceSearch() = default;
 
-}  // namespace
+double CgalFaceSearch::squared_distance(const Eigen::Vector3d& p) const {
+  return search_->tree.squared_distance(to_point(p));  // hint from the KD tree
+}
+
+uint32_t CgalFaceSearch::nearest_face(const Eigen::Vector3d& p) const {
+  return search_->tree.closest_point_and_primitive(to_point(p)).second;
+}
 
 std::unique_ptr<NearestSurfacePoint> cgal_search(const TriangleMesh& mesh, const std::vector<uint32_t>& faces) {
-  return std::make_unique<CgalSearch>(mesh, faces);
+  return std::make_unique<CgalFaceSearch>(mesh, faces);
 }
 
 StatusOr<SurfaceDistance> cgal_surface_distance(const TriangleMesh& reference, const TriangleMesh& test,

@@ -14,8 +14,23 @@
 
 namespace srcodec {
 
-// CGAL's exact point-to-triangle search over `faces` of `mesh`. Memory: ~70
-// bytes per triangle while it exists.
+// CGAL's exact point-to-triangle search over `faces` of `mesh` (valid,
+// finite, of positive area: MeasuredSurface::faces), which also tells which
+// face is nearest. Memory: ~70 bytes per triangle while it exists. Holds a
+// pointer to the mesh, which must outlive it.
+class CgalFaceSearch final : public NearestSurfacePoint {
+ public:
+  CgalFaceSearch(const TriangleMesh& mesh, const std::vector<uint32_t>& faces);
+  ~CgalFaceSearch() override;
+  double squared_distance(const Eigen::Vector3d& p) const override;
+  uint32_t nearest_face(const Eigen::Vector3d& p) const;  // an index into mesh.triangles
+
+ private:
+  struct Search;
+  std::unique_ptr<Search> search_;
+};
+
+// A CgalFaceSearch, as the metric's builder wants it.
 std::unique_ptr<NearestSurfacePoint> cgal_search(const TriangleMesh& mesh, const std::vector<uint32_t>& faces);
 
 // surface_distance() measured with cgal_search: the figures of `compare`

@@ -2,9 +2,11 @@
 // "Measuring". srcodec: one remesh and one full embedded stream, cut at
 // log-spaced sizes from the base mesh alone to the whole stream; Draco: -cl 10
 // at 6..16 quantization bits. Every decoded mesh is measured against the
-// input with the same surface_distance options; rd.csv, rd.png (by
+// input with the same surface_distance options and, unless --no-visual, the
+// same visual measure (tools/measure/visual_difference.h); rd.csv, rd.png (by
 // tools/rd_plot.py) and a summary: Bjøntegaard delta rate (VCEG-M33), byte
-// ratios at 50/60/70 dB, crossovers and time ratios.
+// ratios at 50/60/70 dB, the visual figures there at equal bytes, crossovers
+// and time ratios.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -25,6 +27,7 @@
 #include "tools/measure/bd_rate.h"
 #include "tools/measure/draco_baseline.h"
 #include "tools/measure/surface_distance.h"
+#include "tools/measure/visual_difference.h"
 #include "tools/srcodec/commands.h"
 #include "tools/srcodec/json_writer.h"
 #include "tools/srcodec/remesh_flags.h"
@@ -55,13 +58,16 @@ struct RdCliOptions {
   // table listing only the segments kept); prefix: the first N bytes of the
   // whole stream, as a streaming decoder would receive them.
   std::string cut = "truncate";
-  bool json = false, quiet = false, no_plot = false;
+  VisualOptions visual;
+  bool json = false, quiet = false, no_plot = false, no_visual = false;
 };
 
 struct RdRow {
   std::string codec, setting;
   uint64_t bytes = 0;
   double bpv = 0, psnr = 0, rms = 0, hausdorff = 0, encode_ms = 0, decode_ms = 0;
+  // tools/measure/visual_difference.h; NaN with --no-visual.
+  double normal_degrees = NAN, defect_share = NAN, depth_psnr = NAN, turned_over_share = NAN;
 };
 
 double ms_since(std::chrono::steady_clock::time_point start) {
@@ -79,6 +85,13 @@ class RdRun {
   RdRun(const RdCliOptions& o, TriangleMesh input) : o_(o), input_(std::move(input)) {
     metric_.samples_per_surface = o.samples;
   }
+  // The input's renders, made once for every decoded mesh to be compared with.
+  Status init() {
+    if (o_.no_visual) return ok_status();
+    SRCODEC_ASSIGN_OR_RETURN(VisualReference v, VisualReference::build(input_, o_.visual));
+    visual_ = std::make_unique<VisualReference>(std::move(v));
+    return ok_status();
+  }
   const TriangleMesh& input() const { return input_; }
   void say(const std::string& line) const {
     if (!o_.quiet) std::cerr << "rd: " << line << std::endl;
@@ -91,8 +104,18 @@ class RdRun {
     row.psnr = d.psnr;
     row.rms = d.rms;
     row.hausdorff = d.hausdorff;
+    if (visual_) {
+      SRCODEC_ASSIGN_OR_RETURN(VisualDifference v, visual_->difference_to(decoded));
+      row.normal_degrees = v.mean_normal_degrees;
+      row.defect_share = v.defect_share;
+      row.depth_psnr = v.depth_psnr;
+      row.turned_over_share = v.turned_over_share;
+    }
     say(row.codec + " " + row.setting + ": " + std::to_string(bytes) + " bytes, " + fixed(row.bpv, 3) + " bpv, " +
-        fixed(row.psnr, 2) + " dB");
+        fixed(row.psnr, 2) + " dB" +
+        (visual_ ? ", defects " + fixed(100 * row.defect_share, 2) + "% of pixels, turned over " +
+                       fixed(100 * row.turned_over_share, 3) + "% of the area"
+                 : ""));
     return ok_status();
   }
 
@@ -100,6 +123,7 @@ class RdRun {
   const RdCliOptions& o_;
   TriangleMesh input_;
   SurfaceDistanceOptions metric_;
+  std::unique_ptr<VisualReference> visual_;
 };
 
 // The files the sweep decodes, cut from one full stream.
@@ -220,11 +244,15 @@ std::string csv_number(double v, const char* format) {
 }
 
 std::string to_csv(const std::vector<RdRow>& rows) {
-  std::string s = "codec,setting,bytes,bpv,psnr,rms,hausdorff,encode_ms,decode_ms\n";
+  std::string s =
+      "codec,setting,bytes,bpv,psnr,rms,hausdorff,encode_ms,decode_ms,normal_deg,defect_share,depth_psnr,"
+      "turned_over_share\n";
   for (const RdRow& r : rows) {
     s += r.codec + "," + r.setting + "," + std::to_string(r.bytes) + "," + csv_number(r.bpv, "%.6f") + "," +
          csv_number(r.psnr, "%.4f") + "," + csv_number(r.rms, "%.9g") + "," + csv_number(r.hausdorff, "%.9g") + "," +
-         csv_number(r.encode_ms, "%.3f") + "," + csv_number(r.decode_ms, "%.3f") + "\n";
+         csv_number(r.encode_ms, "%.3f") + "," + csv_number(r.decode_ms, "%.3f") + "," +
+         csv_number(r.normal_degrees, "%.4f") + "," + csv_number(r.defect_share, "%.6f") + "," +
+         csv_number(r.depth_psnr, "%.4f") + "," + csv_number(r.turned_over_share, "%.8f") + "\n";
   }
   return s;
 }
@@ -270,12 +298,61 @@ struct Crossover {
   bool srcodec_cheaper_below = false;
 };
 
+// The visual figures of a point on a curve, interpolated between two rows.
+struct Seen {
+  double bytes = 0, normal_degrees = 0, defect_share = 0, turned_over_share = 0;
+};
+
+// The rows of one codec worth choosing (rd_front's rule: each better than
+// every cheaper one), by bytes; none when the visual columns are missing.
+std::vector<const RdRow*> visual_front(const std::vector<RdRow>& rows, const std::string& codec) {
+  std::vector<const RdRow*> all, front;
+  for (const RdRow& r : rows)
+    if (r.codec == codec && r.bytes > 0 && std::isfinite(r.psnr) && std::isfinite(r.normal_degrees)) all.push_back(&r);
+  std::sort(all.begin(), all.end(), [](const RdRow* a, const RdRow* b) { return a->bytes < b->bytes; });
+  for (const RdRow* r : all)
+    if (front.empty() || r->psnr > front.back()->psnr) front.push_back(r);
+  return front;
+}
+
+// `t` of the way from a to b, bytes in log scale (as rate_at_psnr reads them).
+Seen between(const RdRow& a, const RdRow& b, double t) {
+  const auto lerp = [t](double x, double y) { return x + t * (y - x); };
+  Seen v;
+  v.bytes = std::exp(lerp(std::log(static_cast<double>(a.bytes)), std::log(static_cast<double>(b.bytes))));
+  v.normal_degrees = lerp(a.normal_degrees, b.normal_degrees);
+  v.defect_share = lerp(a.defect_share, b.defect_share);
+  v.turned_over_share = lerp(a.turned_over_share, b.turned_over_share);
+  return v;
+}
+
+// Where the front reaches `psnr` (by PSNR) or `bytes` (by log bytes); nullopt outside it.
+std::optional<Seen> seen_at(const std::vector<const RdRow*>& front, double psnr, double bytes) {
+  for (size_t i = 0; i + 1 < front.size(); ++i) {
+    const RdRow &a = *front[i], &b = *front[i + 1];
+    if (bytes > 0) {
+      const double la = std::log(static_cast<double>(a.bytes)), lb = std::log(static_cast<double>(b.bytes));
+      if (std::log(bytes) >= la && std::log(bytes) <= lb) return between(a, b, (std::log(bytes) - la) / (lb - la));
+    } else if (psnr >= a.psnr && psnr <= b.psnr) {
+      return between(a, b, (psnr - a.psnr) / (b.psnr - a.psnr));
+    }
+  }
+  return std::nullopt;
+}
+
+// srcodec where its curve reaches a PSNR, and Draco at the same bytes.
+struct SeenAtEqualBytes {
+  double psnr = 0;
+  std::optional<Seen> srcodec, draco;
+};
+
 struct RdSummary {
   CodecRange srcodec, draco;
   std::optional<BdRate> bd;
   std::string bd_error;
   std::vector<std::optional<double>> ratios;  // srcodec / draco bytes at kRatioPsnrs
   std::vector<Crossover> crossovers;
+  std::vector<SeenAtEqualBytes> seen;  // at kRatioPsnrs; empty with --no-visual
   double srcodec_encode_ms = 0, draco_encode_ms = 0, srcodec_decode_ms = 0, draco_decode_ms = 0;
 };
 
@@ -300,6 +377,16 @@ RdSummary summarize(const std::vector<RdRow>& rows) {
     const double below = std::max(p - 0.01, std::max(fs.front().psnr, fd.front().psnr));
     const std::optional<double> a = rate_at_psnr(sc, below), b = rate_at_psnr(dc, below);
     s.crossovers.push_back({p, a && b && *a < *b});
+  }
+  const std::vector<const RdRow*> vs = visual_front(rows, "srcodec"), vd = visual_front(rows, "draco");
+  if (!vs.empty() && !vd.empty()) {
+    for (double psnr : kRatioPsnrs) {
+      SeenAtEqualBytes e;
+      e.psnr = psnr;
+      e.srcodec = seen_at(vs, psnr, 0);
+      if (e.srcodec) e.draco = seen_at(vd, 0, e.srcodec->bytes);
+      s.seen.push_back(e);
+    }
   }
   s.srcodec_encode_ms = median_of(rows, "srcodec", &RdRow::encode_ms);
   s.draco_encode_ms = median_of(rows, "draco", &RdRow::encode_ms);
@@ -351,6 +438,22 @@ void print_summary(const RdCliOptions& o, size_t vertices, const RdSummary& s, c
       std::printf("  crossover: %.2f dB (%s smaller below, %s above)\n", c.psnr,
                   c.srcodec_cheaper_below ? "srcodec" : "draco", c.srcodec_cheaper_below ? "draco" : "srcodec");
   }
+  for (const SeenAtEqualBytes& e : s.seen) {
+    if (!e.srcodec) {
+      std::printf("  seen at %.0f dB: n/a (srcodec's curve does not reach it)\n", e.psnr);
+      continue;
+    }
+    if (!e.draco) {
+      std::printf("  seen at %.0f dB: n/a (srcodec needs %.0f bytes; draco's files are %.0f..%.0f bytes)\n", e.psnr,
+                  e.srcodec->bytes, s.draco.min_bytes, s.draco.max_bytes);
+      continue;
+    }
+    std::printf("  seen at %.0f dB, %.0f bytes, srcodec/draco: normal angle %.2f/%.2f deg, defect pixels %.3f/%.3f%%, "
+                "turned over %.4f/%.4f%%\n",
+                e.psnr, e.srcodec->bytes, e.srcodec->normal_degrees, e.draco->normal_degrees,
+                100 * e.srcodec->defect_share, 100 * e.draco->defect_share, 100 * e.srcodec->turned_over_share,
+                100 * e.draco->turned_over_share);
+  }
   std::printf("  time srcodec/draco: encode %.1fx (remesh + encode %.0f ms vs median %.1f ms), decode %.1fx "
               "(median %.1f ms vs %.1f ms)\n",
               s.srcodec_encode_ms / s.draco_encode_ms, s.srcodec_encode_ms, s.draco_encode_ms,
@@ -392,6 +495,26 @@ std::string summary_json(const RdCliOptions& o, size_t vertices, const RdSummary
     x.field("psnr", c.psnr).field("cheaper_below", c.srcodec_cheaper_below ? "srcodec" : "draco");
     crossings.push_back(x);
   }
+  std::vector<JsonWriter> seen;
+  for (const SeenAtEqualBytes& e : s.seen) {
+    JsonWriter x;
+    x.field("psnr", e.psnr);
+    for (const auto& [name, v] : {std::pair<const char*, const std::optional<Seen>&>{"srcodec", e.srcodec},
+                                  {"draco", e.draco}}) {
+      if (!v) {
+        x.null_field(name);
+        continue;
+      }
+      JsonWriter f;
+      f.field("bytes", v->bytes)
+          .field("normal_degrees", v->normal_degrees)
+          .field("defect_share", v->defect_share)
+          .field("turned_over_share", v->turned_over_share);
+      x.object(name, f);
+    }
+    seen.push_back(x);
+  }
+  j.array("seen_at_equal_bytes", seen);
   j.array("crossovers", crossings)
       .field("srcodec_encode_ms", s.srcodec_encode_ms)
       .field("draco_encode_ms", s.draco_encode_ms)
@@ -445,8 +568,9 @@ Status run_rd(const RdCliOptions& o) {
   std::filesystem::create_directories(o.out_dir, error);
   if (error || !std::filesystem::is_directory(o.out_dir))
     return io_error("cannot create the output folder " + o.out_dir + (error ? ": " + error.message() : ""));
-  const RdRun run(o, std::move(input));
+  RdRun run(o, std::move(input));
   run.say(o.input + ": " + std::to_string(run.input().positions.size()) + " vertices");
+  SRCODEC_RETURN_IF_ERROR(run.init());
   SRCODEC_ASSIGN_OR_RETURN(std::vector<RdRow> rows, srcodec_rows(run, o));
   SRCODEC_ASSIGN_OR_RETURN(std::vector<RdRow> draco, draco_rows(run));
   rows.insert(rows.end(), draco.begin(), draco.end());
@@ -493,6 +617,13 @@ Command add_rd_command(CommandLine& cli) {
              "srcodec files: truncate (as `encode --bytes` writes them) or prefix (the whole stream's first bytes)")
       .one_of({"truncate", "prefix"})
       .show_default();
+  cmd.option("--views", o->visual.views, "Views the visual measure renders of each mesh")
+      .range(16, 256)
+      .show_default();
+  cmd.option("--resolution", o->visual.resolution, "Pixels per side of each view")
+      .range(16, 1024)
+      .show_default();
+  cmd.flag("--no-visual", o->no_visual, "Surface distance only (the visual columns of rd.csv are nan)");
   cmd.flag("--json", o->json, "Print the summary as one JSON object");
   cmd.flag("-q,--quiet", o->quiet, "No progress lines on stderr");
   cmd.flag("--no-plot", o->no_plot, "Do not call tools/rd_plot.py");
