@@ -3,7 +3,7 @@
 a Markdown report: a summary table, then per mesh its plot and its rd.csv as a
 table, and the median Bjøntegaard delta rate of srcodec against Draco.
 
-usage: tools/rd_corpus.py [--meshes DIR] [MESH ...] --out DIR [--srcodec BIN]
+usage: tools/rd_corpus.py [--meshes DIR] [MESH ...] --out DIR [--srcodec BIN] [--report-only]
                           [rd options: --levels N --base-vertices N --threshold T
                            --uniform --oversample S --scheme S --points N --samples N --cut C]
 
@@ -97,6 +97,34 @@ def csv_table(path):
     return lines
 
 
+def seen_table(results):
+    """The visual measure at 60 and 70 dB (rd's summary, seen_at_equal_bytes): srcodec where its curve reaches
+    the PSNR against Draco's curve at the same bytes and at the same PSNR."""
+    lines = ["What a viewer sees (`srcodec rd` summary; tools/measure/visual_difference.h): srcodec where its curve "
+             "reaches the PSNR against Draco's curve interpolated at the same bytes (n/a where srcodec's file is "
+             "smaller than Draco's smallest, 6 bits) and at the same PSNR; each cell srcodec / Draco.", "",
+             "| mesh | PSNR | srcodec bytes | normal angle (deg), equal bytes | equal PSNR | defect pixels, equal bytes "
+             "| equal PSNR | turned-over area, equal bytes | equal PSNR |",
+             "|---|---:|---:|---|---|---|---|---|---|"]
+
+    def pair(a, b, key, form):
+        return f"{form.format(a[key])} / {form.format(b[key])}" if a and b else "n/a"
+
+    for name, s, _ in results:
+        for e in (s or {}).get("seen_at_equal_bytes", []):
+            if e["psnr"] < 60:
+                continue
+            a, b, c = e.get("srcodec"), e.get("draco"), e.get("draco_same_psnr")
+            if not a:
+                lines.append(f"| {name} | {e['psnr']:.0f} dB | n/a (not reached) | | | | | | |")
+                continue
+            lines.append(f"| {name} | {e['psnr']:.0f} dB | {a['bytes']:.0f} | "
+                         f"{pair(a, b, 'normal_degrees', '{:.2f}')} | {pair(a, c, 'normal_degrees', '{:.2f}')} | "
+                         f"{pair(a, b, 'defect_share', '{:.2%}')} | {pair(a, c, 'defect_share', '{:.2%}')} | "
+                         f"{pair(a, b, 'turned_over_share', '{:.3%}')} | {pair(a, c, 'turned_over_share', '{:.3%}')} |")
+    return lines if len(lines) > 4 else []
+
+
 def median_line(results):
     bds = [s["bd_rate"] for _, s, _ in results if s and s["bd_rate"] is not None]
     lins = [s["bd_rate_linear"] for _, s, _ in results if s and s["bd_rate"] is not None]
@@ -128,6 +156,9 @@ def write_report(path, results, invocation, rd_args):
     for name, s, error in results:
         out.append(summary_row(name, s) if s else f"| {name} | error: {error.splitlines()[-1] if error else ''} |"
                    + " |" * 8)
+    seen = seen_table(results)
+    if seen:
+        out += [""] + seen
     for name, s, error in results:
         out += ["", f"## {name}", ""]
         if not s:
@@ -141,6 +172,23 @@ def write_report(path, results, invocation, rd_args):
         f.write("\n".join(out) + "\n")
 
 
+def report_only(args, rd_args):
+    results = []
+    for mesh in list_meshes(args.meshes, args.mesh):
+        name = os.path.basename(mesh)
+        path = os.path.join(args.out, os.path.splitext(name)[0], "summary.json")
+        if not os.path.exists(path):
+            results.append((name, None, f"no {path}"))
+            continue
+        with open(path) as f:
+            results.append((name, json.load(f), ""))
+    report = os.path.join(args.out, "report.md")
+    argv = [a for a in sys.argv[1:] if a != "--report-only"]
+    write_report(report, results, "tools/rd_corpus.py " + " ".join(shlex.quote(a) for a in argv), rd_args)
+    print(f"rd_corpus: wrote {report}", file=sys.stderr)
+    return 1 if any(not s for _, s, _ in results) else 0
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("mesh", nargs="*", help="meshes to run (default: every mesh in --meshes)")
@@ -149,7 +197,11 @@ def main():
     parser.add_argument("--out", required=True, help="folder for the report and one subfolder per mesh")
     parser.add_argument("--srcodec", help="the srcodec binary (default: build*/tools/srcodec with `rd`)")
     parser.add_argument("-q", "--quiet", action="store_true", help="no progress from srcodec rd")
+    parser.add_argument("--report-only", action="store_true",
+                        help="no rd runs: write the report from the summary.json files already in --out")
     args, rd_args = parser.parse_known_args()
+    if args.report_only:
+        return report_only(args, rd_args)
     srcodec = find_srcodec(args.srcodec)
     meshes = list_meshes(args.meshes, args.mesh)
     os.makedirs(args.out, exist_ok=True)

@@ -227,10 +227,13 @@ VisualReference& VisualReference::operator=(VisualReference&&) noexcept = defaul
 VisualReference::~VisualReference() = default;
 
 StatusOr<VisualReference> VisualReference::build(const TriangleMesh& reference, const VisualOptions& options) {
-  if (options.views < 16 || options.views > 256)
-    return invalid_argument("visual measure: views must be 16..256, got " + std::to_string(options.views));
-  if (options.resolution < 16 || options.resolution > 1024)
-    return invalid_argument("visual measure: resolution must be 16..1024, got " + std::to_string(options.resolution));
+  const auto range = [](int low, int high) { return std::to_string(low) + ".." + std::to_string(high); };
+  if (options.views < kMinVisualViews || options.views > kMaxVisualViews)
+    return invalid_argument("visual measure: views must be " + range(kMinVisualViews, kMaxVisualViews) + ", got " +
+                            std::to_string(options.views));
+  if (options.resolution < kMinVisualResolution || options.resolution > kMaxVisualResolution)
+    return invalid_argument("visual measure: resolution must be " + range(kMinVisualResolution, kMaxVisualResolution) +
+                            ", got " + std::to_string(options.resolution));
   if (!(options.defect_degrees > 0.0 && options.defect_degrees < 180.0))
     return invalid_argument("visual measure: defect angle must be in (0, 180) degrees");
   auto state = std::make_unique<State>();

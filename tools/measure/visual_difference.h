@@ -19,11 +19,14 @@
 
 namespace srcodec {
 
+constexpr int kMinVisualViews = 16, kMaxVisualViews = 256;
+constexpr int kMinVisualResolution = 16, kMaxVisualResolution = 1024;
+
 struct VisualOptions {
   // Orthographic views from directions spread evenly over the sphere (a
   // Fibonacci lattice), each framing the reference's bounding sphere.
-  int views = 16;         // 16..256
-  int resolution = 256;   // pixels per side of each view, 16..1024
+  int views = 16;         // kMinVisualViews..kMaxVisualViews
+  int resolution = 256;   // pixels per side of each view, kMinVisualResolution..kMaxVisualResolution
   double defect_degrees = 30.0;  // a pixel whose normals differ by more is a visible defect
 };
 

@@ -9,6 +9,7 @@
 #include "tools/measure/visual_difference.h"
 #include "tools/srcodec/commands.h"
 #include "tools/srcodec/json_writer.h"
+#include "tools/srcodec/visual_flags.h"
 
 namespace srcodec {
 namespace {
@@ -94,13 +95,7 @@ Command add_compare_command(CommandLine& cli) {
       .range(size_t{1000}, size_t{100000000})
       .show_default();
   cmd.option("--seed", o->seed, "Sampling seed").show_default();
-  cmd.option("--views", o->visual.views, "Views the visual measure renders, spread around the reference")
-      .range(16, 256)
-      .show_default();
-  cmd.option("--resolution", o->visual.resolution, "Pixels per side of each view")
-      .range(16, 1024)
-      .show_default();
-  cmd.flag("--no-visual", o->no_visual, "Surface distance only: no renders, no turned-over area");
+  add_visual_flags(cmd, o->visual, o->no_visual, "Surface distance only: no renders, no turned-over area");
   cmd.flag("--json", o->json, "Print one JSON object");
   return {&cmd, [o] { return run_compare(*o); }};
 }

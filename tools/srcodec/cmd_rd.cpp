@@ -32,6 +32,7 @@
 #include "tools/srcodec/json_writer.h"
 #include "tools/srcodec/remesh_flags.h"
 #include "tools/srcodec/remesh_progress.h"
+#include "tools/srcodec/visual_flags.h"
 
 #ifndef SRCODEC_SOURCE_DIR
 #define SRCODEC_SOURCE_DIR "."
@@ -340,10 +341,11 @@ std::optional<Seen> seen_at(const std::vector<const RdRow*>& front, double psnr,
   return std::nullopt;
 }
 
-// srcodec where its curve reaches a PSNR, and Draco at the same bytes.
+// srcodec where its curve reaches a PSNR, and Draco at the same bytes and
+// at the same PSNR.
 struct SeenAtEqualBytes {
   double psnr = 0;
-  std::optional<Seen> srcodec, draco;
+  std::optional<Seen> srcodec, draco, draco_same_psnr;
 };
 
 struct RdSummary {
@@ -385,6 +387,7 @@ RdSummary summarize(const std::vector<RdRow>& rows) {
       e.psnr = psnr;
       e.srcodec = seen_at(vs, psnr, 0);
       if (e.srcodec) e.draco = seen_at(vd, 0, e.srcodec->bytes);
+      e.draco_same_psnr = seen_at(vd, psnr, 0);
       s.seen.push_back(e);
     }
   }
@@ -443,16 +446,19 @@ void print_summary(const RdCliOptions& o, size_t vertices, const RdSummary& s, c
       std::printf("  seen at %.0f dB: n/a (srcodec's curve does not reach it)\n", e.psnr);
       continue;
     }
-    if (!e.draco) {
-      std::printf("  seen at %.0f dB: n/a (srcodec needs %.0f bytes; draco's files are %.0f..%.0f bytes)\n", e.psnr,
-                  e.srcodec->bytes, s.draco.min_bytes, s.draco.max_bytes);
-      continue;
+    const auto line = [&](const char* what, const Seen& d) {
+      std::printf("  seen at %.0f dB, srcodec/draco %s: normal angle %.2f/%.2f deg, defect pixels %.3f/%.3f%%, "
+                  "turned over %.4f/%.4f%%\n",
+                  e.psnr, what, e.srcodec->normal_degrees, d.normal_degrees, 100 * e.srcodec->defect_share,
+                  100 * d.defect_share, 100 * e.srcodec->turned_over_share, 100 * d.turned_over_share);
+    };
+    if (e.draco) {
+      line(("at " + fixed(e.srcodec->bytes, 0) + " bytes").c_str(), *e.draco);
+    } else {
+      std::printf("  seen at %.0f dB at equal bytes: n/a (srcodec needs %.0f bytes; draco's files are %.0f..%.0f)\n",
+                  e.psnr, e.srcodec->bytes, s.draco.min_bytes, s.draco.max_bytes);
     }
-    std::printf("  seen at %.0f dB, %.0f bytes, srcodec/draco: normal angle %.2f/%.2f deg, defect pixels %.3f/%.3f%%, "
-                "turned over %.4f/%.4f%%\n",
-                e.psnr, e.srcodec->bytes, e.srcodec->normal_degrees, e.draco->normal_degrees,
-                100 * e.srcodec->defect_share, 100 * e.draco->defect_share, 100 * e.srcodec->turned_over_share,
-                100 * e.draco->turned_over_share);
+    if (e.draco_same_psnr) line(("at equal PSNR (draco " + fixed(e.draco_same_psnr->bytes, 0) + " bytes)").c_str(), *e.draco_same_psnr);
   }
   std::printf("  time srcodec/draco: encode %.1fx (remesh + encode %.0f ms vs median %.1f ms), decode %.1fx "
               "(median %.1f ms vs %.1f ms)\n",
@@ -500,7 +506,8 @@ std::string summary_json(const RdCliOptions& o, size_t vertices, const RdSummary
     JsonWriter x;
     x.field("psnr", e.psnr);
     for (const auto& [name, v] : {std::pair<const char*, const std::optional<Seen>&>{"srcodec", e.srcodec},
-                                  {"draco", e.draco}}) {
+                                  {"draco", e.draco},
+                                  {"draco_same_psnr", e.draco_same_psnr}}) {
       if (!v) {
         x.null_field(name);
         continue;
@@ -617,13 +624,7 @@ Command add_rd_command(CommandLine& cli) {
              "srcodec files: truncate (as `encode --bytes` writes them) or prefix (the whole stream's first bytes)")
       .one_of({"truncate", "prefix"})
       .show_default();
-  cmd.option("--views", o->visual.views, "Views the visual measure renders of each mesh")
-      .range(16, 256)
-      .show_default();
-  cmd.option("--resolution", o->visual.resolution, "Pixels per side of each view")
-      .range(16, 1024)
-      .show_default();
-  cmd.flag("--no-visual", o->no_visual, "Surface distance only (the visual columns of rd.csv are nan)");
+  add_visual_flags(cmd, o->visual, o->no_visual, "Surface distance only (the visual columns of rd.csv are nan)");
   cmd.flag("--json", o->json, "Print the summary as one JSON object");
   cmd.flag("-q,--quiet", o->quiet, "No progress lines on stderr");
   cmd.flag("--no-plot", o->no_plot, "Do not call tools/rd_plot.py");
