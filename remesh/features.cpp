@@ -7,11 +7,11 @@
 #include <utility>
 
 #include "remesh/adjacency.h"
+#include "remesh/geometry.h"
 
 namespace srcodec {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // A candidate must bend more than this many times the median bend of the
 // edges around it: on a noisy scan every edge bends, and only what stands
 // out of that noise can be a crease. The noise is estimated only from at
@@ -44,12 +44,11 @@ Faces face_geometry(const TriangleMesh& mesh) {
   f.centroid.resize(n);
   for (size_t i = 0; i < n; ++i) {
     const auto& t = mesh.triangles[i];
-    const Eigen::Vector3d &p0 = mesh.positions[t[0]], &p1 = mesh.positions[t[1]], &p2 = mesh.positions[t[2]];
-    const Eigen::Vector3d cross = (p1 - p0).cross(p2 - p0);
+    const Eigen::Vector3d cross = triangle_normal(mesh.positions, t);
     const double norm = cross.norm();
     f.area[i] = 0.5 * norm;
     f.normal[i] = norm > 0 ? Eigen::Vector3d(cross / norm) : Eigen::Vector3d::Zero();
-    f.centroid[i] = (p0 + p1 + p2) / 3.0;
+    f.centroid[i] = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
   }
   return f;
 }
@@ -62,17 +61,6 @@ double median_edge_length(const TriangleMesh& mesh) {
   if (lengths.empty()) return 0.0;
   std::nth_element(lengths.begin(), lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2), lengths.end());
   return lengths[lengths.size() / 2];
-}
-
-double bounding_diagonal(const TriangleMesh& mesh) {
-  Eigen::AlignedBox3d box;
-  for (const auto& t : mesh.triangles)
-    for (int32_t v : t) box.extend(mesh.positions[v]);
-  return box.isEmpty() ? 0.0 : box.diagonal().norm();
-}
-
-double degrees_between(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / kPi;
 }
 
 // Walks over the triangles within a radius of a point, across edges.
@@ -199,7 +187,8 @@ Features assemble(const TriangleMesh& mesh, std::vector<FeatureEdge> edges, cons
       // sharp one: the corner is where it peaks (ties to the lower index).
       bool peak = true;
       for (int32_t w : at[v])
-        if (at[w].size() == 2 && (turn[w] > turn[v] || (turn[w] == turn[v] && w < static_cast<int32_t>(v)))) peak = false;
+        if (at[w].size() == 2 && (turn[w] > turn[v] || (turn[w] == turn[v] && w < static_cast<int32_t>(v))))
+          peak = false;
       if (peak) {
         out.corners.push_back(static_cast<int32_t>(v));
         stops[v] = 1;
@@ -251,14 +240,16 @@ Features detect_features(const TriangleMesh& mesh, const FeatureOptions& options
   const Faces faces = face_geometry(mesh);
   const auto across = triangles_across(mesh.triangles);
   const size_t nt = mesh.triangles.size();
-  const double radius = std::min(options.scale * median_edge_length(mesh), kLargestRadius * bounding_diagonal(mesh));
+  const double radius =
+      std::min(options.scale * median_edge_length(mesh), kLargestRadius * bounding_box_diagonal(mesh.positions));
 
   // How much each edge bends: the angle between its triangles' normals.
   std::vector<std::array<double, 3>> bend(nt, {0, 0, 0});
   for (size_t f = 0; f < nt; ++f)
     for (int c = 0; c < 3; ++c) {
       const int32_t g = across[f][c];
-      if (g >= 0 && faces.area[f] > 0 && faces.area[g] > 0) bend[f][c] = degrees_between(faces.normal[f], faces.normal[g]);
+      if (g >= 0 && faces.area[f] > 0 && faces.area[g] > 0)
+        bend[f][c] = degrees_between(faces.normal[f], faces.normal[g]);
     }
 
   // Candidates: edges that bend more than the crease angle and stand out of
@@ -309,8 +300,9 @@ Features detect_features(const TriangleMesh& mesh, const FeatureOptions& options
       if (cut && degrees_between(side[0], side[1]) > options.crease_degrees)
         edges.push_back({std::min(a, b), std::max(a, b), FeatureKind::kCrease});
     }
-  std::sort(edges.begin(), edges.end(),
-            [](const FeatureEdge& x, const FeatureEdge& y) { return std::make_pair(x.a, x.b) < std::make_pair(y.a, y.b); });
+  std::sort(edges.begin(), edges.end(), [](const FeatureEdge& x, const FeatureEdge& y) {
+    return std::make_pair(x.a, x.b) < std::make_pair(y.a, y.b);
+  });
   // An edge where more than two triangles meet is seen once per triangle.
   edges.erase(std::unique(edges.begin(), edges.end(),
                           [](const FeatureEdge& x, const FeatureEdge& y) { return x.a == y.a && x.b == y.b; }),

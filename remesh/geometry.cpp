@@ -97,6 +97,10 @@ Eigen::Vector3d barycentric(const Eigen::Vector3d& q, const Eigen::Vector3d& a, 
   return Eigen::Vector3d(u, v, 1.0 - u - v);
 }
 
+double degrees_between(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::atan2(a.cross(b).norm(), a.dot(b)) * (180.0 / 3.14159265358979323846);
+}
+
 Eigen::Vector3d triangle_normal(const std::vector<Eigen::Vector3d>& p, const std::array<int32_t, 3>& t) {
   return (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]);
 }

@@ -45,6 +45,10 @@ double squared_distance_to_triangle(const Eigen::Vector3d& p, const Eigen::Vecto
 Eigen::Vector3d barycentric(const Eigen::Vector3d& q, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                             const Eigen::Vector3d& c);
 
+// The angle between two vectors (any length), in degrees; exact near 0 and
+// 180, where an arccosine of their dot product loses its digits.
+double degrees_between(const Eigen::Vector3d& a, const Eigen::Vector3d& b);
+
 // The normal of triangle t of `p`, twice its area long; its area.
 Eigen::Vector3d triangle_normal(const std::vector<Eigen::Vector3d>& p, const std::array<int32_t, 3>& t);
 double triangle_area(const std::vector<Eigen::Vector3d>& p, const std::array<int32_t, 3>& t);

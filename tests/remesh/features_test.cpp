@@ -11,6 +11,7 @@
 #include <random>
 
 #include "remesh/adjacency.h"
+#include "remesh/geometry.h"
 #include "tests/test_util.h"
 
 namespace srcodec {
@@ -112,17 +113,14 @@ TEST(Features, SmoothAndNoisySpheresHaveNone) {
   std::normal_distribution<double> noise(0.0, 0.33 * 0.06);  // icosphere(4) edges are about 0.06 long
   for (auto& p : noisy.positions) p += Eigen::Vector3d(noise(random), noise(random), noise(random));
   const auto across = triangles_across(noisy.triangles);
-  auto normal = [&](size_t f) {
-    const auto& t = noisy.triangles[f];
-    return Eigen::Vector3d((noisy.positions[t[1]] - noisy.positions[t[0]])
-                               .cross(noisy.positions[t[2]] - noisy.positions[t[0]])
-                               .normalized());
-  };
   size_t sharp_single = 0;
   for (size_t f = 0; f < noisy.triangles.size(); ++f)
-    for (int c = 0; c < 3; ++c)
-      if (across[f][c] > static_cast<int32_t>(f) && normal(f).dot(normal(across[f][c])) < std::cos(30.0 * M_PI / 180))
+    for (int c = 0; c < 3; ++c) {
+      const int32_t g = across[f][c];
+      if (g > static_cast<int32_t>(f) && degrees_between(triangle_normal(noisy.positions, noisy.triangles[f]),
+                                                         triangle_normal(noisy.positions, noisy.triangles[g])) > 30.0)
         ++sharp_single;
+    }
   EXPECT_GT(sharp_single, 100u) << "the noise bends many single edges";
   const Features f = detect_features(noisy);
   EXPECT_TRUE(f.edges.empty()) << f.edges.size() << " crease edges";

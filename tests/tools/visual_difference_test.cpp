@@ -13,6 +13,7 @@
 #include <map>
 #include <random>
 
+#include "remesh/geometry.h"
 #include "tests/test_util.h"
 
 namespace srcodec {
@@ -38,19 +39,15 @@ TEST(VisualDifference, MeshAgainstItselfShowsNothing) {
   EXPECT_EQ(d.turned_over_share, 0.0);
 }
 
-double area(const TriangleMesh& m, const std::array<int32_t, 3>& t) {
-  return 0.5 * (m.positions[t[1]] - m.positions[t[0]]).cross(m.positions[t[2]] - m.positions[t[0]]).norm();
-}
-
 TEST(VisualDifference, TurnedOverTrianglesAreCountedAndSeen) {
   const TriangleMesh sphere = test::icosphere(4, 1.0);
   TriangleMesh flipped = sphere;
   double flipped_area = 0, total_area = 0;
   for (size_t f = 0; f < flipped.triangles.size(); ++f) {
-    total_area += area(sphere, sphere.triangles[f]);
+    total_area += triangle_area(sphere.positions, sphere.triangles[f]);
     if (f % 7 != 3) continue;
     std::swap(flipped.triangles[f][1], flipped.triangles[f][2]);
-    flipped_area += area(sphere, sphere.triangles[f]);
+    flipped_area += triangle_area(sphere.positions, sphere.triangles[f]);
   }
   const VisualDifference d = measured(sphere, flipped);
   // Exact: each flipped triangle faces against itself, every other one along.
@@ -142,14 +139,11 @@ TEST(VisualDifference, CubeAgainstBevelledCubeMatchesProjectedAreas) {
   const double corner_angle = std::acos(1.0 / std::sqrt(3.0)) * 180.0 / kPi;
   for (const Eigen::Vector3d& d : view_directions(o.views)) {
     for (const auto& t : cube.triangles) {
-      const Eigen::Vector3d n = (cube.positions[t[1]] - cube.positions[t[0]]).cross(cube.positions[t[2]] - cube.positions[t[0]]);
-      outline += std::max(0.0, 0.5 * n.dot(d));
+      outline += std::max(0.0, 0.5 * triangle_normal(cube.positions, t).dot(d));
     }
     for (size_t f = 0; f < bevelled.triangles.size(); ++f) {
       const auto& t = bevelled.triangles[f];
-      const Eigen::Vector3d n =
-          (bevelled.positions[t[1]] - bevelled.positions[t[0]]).cross(bevelled.positions[t[2]] - bevelled.positions[t[0]]);
-      const double a = std::max(0.0, 0.5 * n.dot(d));
+      const double a = std::max(0.0, 0.5 * triangle_normal(bevelled.positions, t).dot(d));
       inner += a;
       const size_t plane = static_cast<size_t>(face_of[f]);
       if (plane >= strips_from) defect_area += a;

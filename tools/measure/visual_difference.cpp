@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "remesh/folds.h"
+#include "remesh/geometry.h"
 #include "remesh/surface_distance.h"
 #include "tools/measure/surface_distance.h"
 
@@ -155,9 +156,7 @@ class Scene {
 
   // The unit normal of face f (of positive area), in the faces' orientation.
   Eigen::Vector3d normal(uint32_t f) const {
-    const TriangleMesh& mesh = *surface_.mesh;
-    const auto& t = mesh.triangles[f];
-    return (mesh.positions[t[1]] - mesh.positions[t[0]]).cross(mesh.positions[t[2]] - mesh.positions[t[0]]).normalized();
+    return triangle_normal(surface_.mesh->positions, surface_.mesh->triangles[f]).normalized();
   }
 
  private:
@@ -201,11 +200,6 @@ void render(const Scene& scene, const std::vector<View>& views, int resolution, 
       row(r, pixels);
     }
   });
-}
-
-double angle_degrees(const Eigen::Vector3f& a, const Eigen::Vector3f& b) {
-  const Eigen::Vector3d ad = a.cast<double>(), bd = b.cast<double>();
-  return std::atan2(ad.cross(bd).norm(), ad.dot(bd)) * 180.0 / kPi;
 }
 
 }  // namespace
@@ -279,7 +273,7 @@ StatusOr<VisualDifference> VisualReference::difference_to(const TriangleMesh& te
         continue;
       }
       ++sum.both;
-      const double angle = angle_degrees(a.normal, b.normal);
+      const double angle = degrees_between(a.normal.cast<double>(), b.normal.cast<double>());
       sum.angle += angle;
       if (angle > s.options.defect_degrees) {
         ++sum.defects;
@@ -320,10 +314,8 @@ StatusOr<VisualDifference> VisualReference::difference_to(const TriangleMesh& te
     for (size_t i = r.begin(); i != r.end(); ++i) {
       const auto& t = test.triangles[surface.faces[i]];
       const Eigen::Vector3d &p0 = test.positions[t[0]], &p1 = test.positions[t[1]], &p2 = test.positions[t[2]];
-      const auto& u = ref.triangles[s.search->nearest_face((p0 + p1 + p2) / 3.0)];
-      const Eigen::Vector3d normal =
-          (ref.positions[u[1]] - ref.positions[u[0]]).cross(ref.positions[u[2]] - ref.positions[u[0]]);
-      turned[i] = folded(facing(p0, p1, p2, normal)) ? 1 : 0;
+      const uint32_t nearest = s.search->nearest_face((p0 + p1 + p2) / 3.0);
+      turned[i] = folded(facing(p0, p1, p2, triangle_normal(ref.positions, ref.triangles[nearest]))) ? 1 : 0;
     }
   });
   double turned_area = 0.0;

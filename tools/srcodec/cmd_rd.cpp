@@ -458,7 +458,8 @@ void print_summary(const RdCliOptions& o, size_t vertices, const RdSummary& s, c
       std::printf("  seen at %.0f dB at equal bytes: n/a (srcodec needs %.0f bytes; draco's files are %.0f..%.0f)\n",
                   e.psnr, e.srcodec->bytes, s.draco.min_bytes, s.draco.max_bytes);
     }
-    if (e.draco_same_psnr) line(("at equal PSNR (draco " + fixed(e.draco_same_psnr->bytes, 0) + " bytes)").c_str(), *e.draco_same_psnr);
+    if (e.draco_same_psnr)
+      line(("at equal PSNR (draco " + fixed(e.draco_same_psnr->bytes, 0) + " bytes)").c_str(), *e.draco_same_psnr);
   }
   std::printf("  time srcodec/draco: encode %.1fx (remesh + encode %.0f ms vs median %.1f ms), decode %.1fx "
               "(median %.1f ms vs %.1f ms)\n",
