@@ -188,6 +188,18 @@ TEST(VisualDifference, SameFiguresOnOneThreadOrMoreAndFarFromTheOrigin) {
   EXPECT_NEAR(moved.depth_psnr, many.depth_psnr, 0.05);
 }
 
+TEST(VisualDifference, OneWildVertexDoesNotBlurTheRest) {
+  // A decoded mesh with one vertex thrown a million radii away: its
+  // triangles are defects, the rest still measures as before.
+  const TriangleMesh sphere = test::icosphere(4, 1.0);
+  TriangleMesh wild = sphere;
+  wild.positions[0] = Eigen::Vector3d(1e6, 0, 0);
+  const VisualDifference d = measured(sphere, wild);
+  EXPECT_GT(d.defect_share, 0.0);
+  EXPECT_LT(d.defect_share, 0.05);
+  EXPECT_GT(d.depth_psnr, 120.0) << "the untouched surface keeps exact depths";
+}
+
 TEST(VisualDifference, RefusesBadOptionsAndBadMeshes) {
   const TriangleMesh sphere = test::icosphere(2, 1.0);
   VisualOptions o;

@@ -23,6 +23,8 @@ constexpr double kPi = 3.14159265358979323846;
 // In the frame's units (the reference's bounding radius): a depth difference
 // over this is a different surface seen, not the same one moved.
 constexpr double kDepthJump = 0.1;
+// The farthest from the centre rays start, in the same units.
+constexpr double kFarthestStart = 4.0;
 
 // The frame every render is made in: the reference's bounding-box centre
 // and half diagonal map to the origin and 1, so that Embree's single
@@ -178,7 +180,10 @@ struct Pixel {
 // `row(index, pixels)` once; rows run in parallel.
 template <typename RowFn>
 void render(const Scene& scene, const std::vector<View>& views, int resolution, RowFn&& row) {
-  const double start = 1.01 * std::max(1.0, scene.extent());  // rays start outside everything
+  // Rays start outside everything, but no farther than kFarthestStart: a
+  // wild vertex a million radii away would otherwise spend the depths'
+  // single precision on the distance to it.
+  const double start = 1.01 * std::clamp(scene.extent(), 1.0, kFarthestStart);
   const size_t rows = views.size() * static_cast<size_t>(resolution);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, rows, 4), [&](const tbb::blocked_range<size_t>& range) {
     std::vector<Pixel> pixels(resolution);
