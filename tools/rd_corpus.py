@@ -98,7 +98,7 @@ def csv_table(path):
 
 
 def seen_table(results):
-    """The visual measure at 60 and 70 dB (rd's summary, seen_at_equal_bytes): srcodec where its curve reaches
+    """The visual measure at 60 and 70 dB (rd's summary, seen_at): srcodec where its curve reaches
     the PSNR against Draco's curve at the same bytes and at the same PSNR."""
     lines = ["What a viewer sees (`srcodec rd` summary; tools/measure/visual_difference.h): srcodec where its curve "
              "reaches the PSNR against Draco's curve interpolated at the same bytes (n/a where srcodec's file is "
@@ -111,10 +111,10 @@ def seen_table(results):
         return f"{form.format(a[key])} / {form.format(b[key])}" if a and b else "n/a"
 
     for name, s, _ in results:
-        for e in (s or {}).get("seen_at_equal_bytes", []):
+        for e in (s or {}).get("seen_at", []):
             if e["psnr"] < 60:
                 continue
-            a, b, c = e.get("srcodec"), e.get("draco"), e.get("draco_same_psnr")
+            a, b, c = e.get("srcodec"), e.get("draco_same_bytes"), e.get("draco_same_psnr")
             if not a:
                 lines.append(f"| {name} | {e['psnr']:.0f} dB | n/a (not reached) | | | | | | |")
                 continue

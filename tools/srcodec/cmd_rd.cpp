@@ -343,9 +343,9 @@ std::optional<Seen> seen_at(const std::vector<const RdRow*>& front, double psnr,
 
 // srcodec where its curve reaches a PSNR, and Draco at the same bytes and
 // at the same PSNR.
-struct SeenAtEqualBytes {
+struct SeenAt {
   double psnr = 0;
-  std::optional<Seen> srcodec, draco, draco_same_psnr;
+  std::optional<Seen> srcodec, draco_same_bytes, draco_same_psnr;
 };
 
 struct RdSummary {
@@ -354,7 +354,7 @@ struct RdSummary {
   std::string bd_error;
   std::vector<std::optional<double>> ratios;  // srcodec / draco bytes at kRatioPsnrs
   std::vector<Crossover> crossovers;
-  std::vector<SeenAtEqualBytes> seen;  // at kRatioPsnrs; empty with --no-visual
+  std::vector<SeenAt> seen;  // at kRatioPsnrs; empty with --no-visual
   double srcodec_encode_ms = 0, draco_encode_ms = 0, srcodec_decode_ms = 0, draco_decode_ms = 0;
 };
 
@@ -383,10 +383,10 @@ RdSummary summarize(const std::vector<RdRow>& rows) {
   const std::vector<const RdRow*> vs = visual_front(rows, "srcodec"), vd = visual_front(rows, "draco");
   if (!vs.empty() && !vd.empty()) {
     for (double psnr : kRatioPsnrs) {
-      SeenAtEqualBytes e;
+      SeenAt e;
       e.psnr = psnr;
       e.srcodec = seen_at(vs, psnr, 0);
-      if (e.srcodec) e.draco = seen_at(vd, 0, e.srcodec->bytes);
+      if (e.srcodec) e.draco_same_bytes = seen_at(vd, 0, e.srcodec->bytes);
       e.draco_same_psnr = seen_at(vd, psnr, 0);
       s.seen.push_back(e);
     }
@@ -441,7 +441,7 @@ void print_summary(const RdCliOptions& o, size_t vertices, const RdSummary& s, c
       std::printf("  crossover: %.2f dB (%s smaller below, %s above)\n", c.psnr,
                   c.srcodec_cheaper_below ? "srcodec" : "draco", c.srcodec_cheaper_below ? "draco" : "srcodec");
   }
-  for (const SeenAtEqualBytes& e : s.seen) {
+  for (const SeenAt& e : s.seen) {
     if (!e.srcodec) {
       std::printf("  seen at %.0f dB: n/a (srcodec's curve does not reach it)\n", e.psnr);
       continue;
@@ -452,8 +452,8 @@ void print_summary(const RdCliOptions& o, size_t vertices, const RdSummary& s, c
                   e.psnr, what, e.srcodec->normal_degrees, d.normal_degrees, 100 * e.srcodec->defect_share,
                   100 * d.defect_share, 100 * e.srcodec->turned_over_share, 100 * d.turned_over_share);
     };
-    if (e.draco) {
-      line(("at " + fixed(e.srcodec->bytes, 0) + " bytes").c_str(), *e.draco);
+    if (e.draco_same_bytes) {
+      line(("at " + fixed(e.srcodec->bytes, 0) + " bytes").c_str(), *e.draco_same_bytes);
     } else {
       std::printf("  seen at %.0f dB at equal bytes: n/a (srcodec needs %.0f bytes; draco's files are %.0f..%.0f)\n",
                   e.psnr, e.srcodec->bytes, s.draco.min_bytes, s.draco.max_bytes);
@@ -503,11 +503,11 @@ std::string summary_json(const RdCliOptions& o, size_t vertices, const RdSummary
     crossings.push_back(x);
   }
   std::vector<JsonWriter> seen;
-  for (const SeenAtEqualBytes& e : s.seen) {
+  for (const SeenAt& e : s.seen) {
     JsonWriter x;
     x.field("psnr", e.psnr);
     for (const auto& [name, v] : {std::pair<const char*, const std::optional<Seen>&>{"srcodec", e.srcodec},
-                                  {"draco", e.draco},
+                                  {"draco_same_bytes", e.draco_same_bytes},
                                   {"draco_same_psnr", e.draco_same_psnr}}) {
       if (!v) {
         x.null_field(name);
@@ -522,7 +522,7 @@ std::string summary_json(const RdCliOptions& o, size_t vertices, const RdSummary
     }
     seen.push_back(x);
   }
-  j.array("seen_at_equal_bytes", seen);
+  j.array("seen_at", seen);
   j.array("crossovers", crossings)
       .field("srcodec_encode_ms", s.srcodec_encode_ms)
       .field("draco_encode_ms", s.draco_encode_ms)
