@@ -27,6 +27,7 @@
 #include <string>
 #include <utility>
 
+#include "format/union_find.h"
 #include "remesh/adjacency.h"
 #include "remesh/openmesh_types.h"
 
@@ -151,21 +152,11 @@ Status check_mesh(const TriangleMesh& mesh) {
 
   // One edge-connected component (with manifold vertices, vertex-connected is
   // the same).
-  std::vector<int32_t> parent(n);
-  for (size_t v = 0; v < n; ++v) parent[v] = static_cast<int32_t>(v);
-  auto find = [&](int32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
+  UnionFind sets(n);
   size_t components = n;
   for (const auto& t : mesh.triangles)
-    for (int c = 0; c < 2; ++c) {
-      const int32_t a = find(t[c]), b = find(t[c + 1]);
-      if (a != b) {
-        parent[std::max(a, b)] = std::min(a, b);
-        --components;
-      }
-    }
+    for (int c = 0; c < 2; ++c)
+      if (sets.unite(t[c], t[c + 1])) --components;
   if (components != 1)
     return invalid_mesh("build_base_mesh: the mesh has " + str(components) +
                         " connected components; build one base mesh per component");

@@ -6,6 +6,7 @@
 #include <map>
 #include <utility>
 
+#include "format/union_find.h"
 #include "remesh/adjacency.h"
 #include "remesh/geometry.h"
 
@@ -101,15 +102,23 @@ class LocalWalk {
   std::vector<int32_t> reached_;
 };
 
-// Walks the feature edges into curves: from every corner and end along each
-// of its edges to the next corner or end, then the closed loops left.
-std::vector<FeatureCurve> chain(size_t vertex_count, const std::vector<FeatureEdge>& edges,
-                                const std::vector<char>& stops) {
-  std::vector<std::vector<std::pair<int32_t, int32_t>>> at(vertex_count);  // (other vertex, edge index)
+// Per vertex, its feature edges: (the other end, the edge's index).
+using FeatureStar = std::vector<std::vector<std::pair<int32_t, int32_t>>>;
+
+FeatureStar feature_star(size_t vertex_count, const std::vector<FeatureEdge>& edges) {
+  FeatureStar at(vertex_count);
   for (size_t e = 0; e < edges.size(); ++e) {
     at[edges[e].a].push_back({edges[e].b, static_cast<int32_t>(e)});
     at[edges[e].b].push_back({edges[e].a, static_cast<int32_t>(e)});
   }
+  return at;
+}
+
+// Walks the feature edges into curves: from every corner and end along each
+// of its edges to the next corner or end, then the closed loops left.
+std::vector<FeatureCurve> chain(const FeatureStar& at, const std::vector<FeatureEdge>& edges,
+                                const std::vector<char>& stops) {
+  const size_t vertex_count = at.size();
   std::vector<char> used(edges.size(), 0);
   std::vector<FeatureCurve> curves;
   auto walk = [&](int32_t start, int32_t to, int32_t edge) {
@@ -144,12 +153,12 @@ std::vector<FeatureCurve> chain(size_t vertex_count, const std::vector<FeatureEd
 // How sharply a feature curve turns at v (two feature edges, to vertices
 // at[v]), in degrees: judged, like creases, over `radius` on either side (a
 // jagged scan boundary turns at every vertex and goes straight at scale).
-double turn_at(const TriangleMesh& mesh, const std::vector<std::vector<int32_t>>& at, int32_t v, double radius) {
+double turn_at(const TriangleMesh& mesh, const FeatureStar& at, int32_t v, double radius) {
   auto reach = [&](int32_t step) {
     int32_t previous = v, current = step;
     double length = (mesh.positions[step] - mesh.positions[v]).norm();
     for (size_t guard = 0; length < radius && at[current].size() == 2 && guard < mesh.positions.size(); ++guard) {
-      const int32_t next = at[current][0] == previous ? at[current][1] : at[current][0];
+      const int32_t next = at[current][0].first == previous ? at[current][1].first : at[current][0].first;
       if (next == v) break;  // a small closed loop
       length += (mesh.positions[next] - mesh.positions[current]).norm();
       previous = current;
@@ -157,18 +166,14 @@ double turn_at(const TriangleMesh& mesh, const std::vector<std::vector<int32_t>>
     }
     return Eigen::Vector3d(mesh.positions[current] - mesh.positions[v]);
   };
-  return 180.0 - degrees_between(reach(at[v][0]), reach(at[v][1]));
+  return 180.0 - degrees_between(reach(at[v][0].first), reach(at[v][1].first));
 }
 
 // Corners, ends and curves of a set of feature edges (sorted by (a, b)).
 Features assemble(const TriangleMesh& mesh, std::vector<FeatureEdge> edges, const FeatureOptions& options,
                   double radius) {
   const size_t nv = mesh.positions.size();
-  std::vector<std::vector<int32_t>> at(nv);
-  for (const FeatureEdge& e : edges) {
-    at[e.a].push_back(e.b);
-    at[e.b].push_back(e.a);
-  }
+  const FeatureStar at = feature_star(nv, edges);
   std::vector<double> turn(nv, 0.0);
   for (size_t v = 0; v < nv; ++v)
     if (at[v].size() == 2) turn[v] = turn_at(mesh, at, static_cast<int32_t>(v), radius);
@@ -186,7 +191,7 @@ Features assemble(const TriangleMesh& mesh, std::vector<FeatureEdge> edges, cons
       // Measured over a radius, the turn is high for every vertex near a
       // sharp one: the corner is where it peaks (ties to the lower index).
       bool peak = true;
-      for (int32_t w : at[v])
+      for (const auto& [w, e] : at[v])
         if (at[w].size() == 2 && (turn[w] > turn[v] || (turn[w] == turn[v] && w < static_cast<int32_t>(v))))
           peak = false;
       if (peak) {
@@ -195,7 +200,7 @@ Features assemble(const TriangleMesh& mesh, std::vector<FeatureEdge> edges, cons
       }
     }
   }
-  out.curves = chain(nv, edges, stops);
+  out.curves = chain(at, edges, stops);
   out.edges = std::move(edges);
   return out;
 }
@@ -204,24 +209,19 @@ Features assemble(const TriangleMesh& mesh, std::vector<FeatureEdge> edges, cons
 // diagonal of their bounding box): below the scale features are sought at,
 // a scratch or a knot of noise, not a crease. Boundaries stay.
 std::vector<FeatureEdge> without_scratches(const TriangleMesh& mesh, std::vector<FeatureEdge> edges, double radius) {
-  std::vector<int32_t> parent(mesh.positions.size());
-  for (size_t v = 0; v < parent.size(); ++v) parent[v] = static_cast<int32_t>(v);
-  auto find = [&](int32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
+  UnionFind sets(mesh.positions.size());
   for (const FeatureEdge& e : edges)
-    if (e.kind == FeatureKind::kCrease) parent[find(e.a)] = find(e.b);
-  std::map<int32_t, Eigen::AlignedBox3d> extent;
+    if (e.kind == FeatureKind::kCrease) sets.unite(e.a, e.b);
+  std::map<size_t, Eigen::AlignedBox3d> extent;
   for (const FeatureEdge& e : edges)
     if (e.kind == FeatureKind::kCrease) {
-      Eigen::AlignedBox3d& box = extent[find(e.a)];
+      Eigen::AlignedBox3d& box = extent[sets.find(e.a)];
       box.extend(mesh.positions[e.a]);
       box.extend(mesh.positions[e.b]);
     }
   std::vector<FeatureEdge> kept;
   for (const FeatureEdge& e : edges)
-    if (e.kind != FeatureKind::kCrease || extent[find(e.a)].diagonal().norm() >= radius) kept.push_back(e);
+    if (e.kind != FeatureKind::kCrease || extent[sets.find(e.a)].diagonal().norm() >= radius) kept.push_back(e);
   return kept;
 }
 
