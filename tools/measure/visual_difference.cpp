@@ -37,16 +37,12 @@ struct Frame {
 
 Frame bounding_frame(const MeasuredSurface& surface) {
   const TriangleMesh& mesh = *surface.mesh;
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
-  Eigen::Vector3d hi = -lo;
+  Eigen::AlignedBox3d box;
   for (uint32_t f : surface.faces)
-    for (int32_t v : mesh.triangles[f]) {
-      lo = lo.cwiseMin(mesh.positions[v]);
-      hi = hi.cwiseMax(mesh.positions[v]);
-    }
+    for (int32_t v : mesh.triangles[f]) box.extend(mesh.positions[v]);
   Frame frame;
-  frame.center = 0.5 * (lo + hi);
-  frame.radius = 0.5 * (hi - lo).norm();
+  frame.center = box.center();
+  frame.radius = 0.5 * box.diagonal().norm();
   if (!(frame.radius > 0.0)) frame.radius = 1.0;  // cannot happen with positive area; kept finite anyway
   return frame;
 }

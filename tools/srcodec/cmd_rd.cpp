@@ -304,15 +304,17 @@ struct Seen {
   double bytes = 0, normal_degrees = 0, defect_share = 0, turned_over_share = 0;
 };
 
-// The rows of one codec worth choosing (rd_front's rule: each better than
-// every cheaper one), by bytes; none when the visual columns are missing.
+// The rows of one codec on its rd_front, by bytes; none when the visual
+// columns are missing.
 std::vector<const RdRow*> visual_front(const std::vector<RdRow>& rows, const std::string& codec) {
-  std::vector<const RdRow*> all, front;
-  for (const RdRow& r : rows)
-    if (r.codec == codec && r.bytes > 0 && std::isfinite(r.psnr) && std::isfinite(r.normal_degrees)) all.push_back(&r);
-  std::sort(all.begin(), all.end(), [](const RdRow* a, const RdRow* b) { return a->bytes < b->bytes; });
-  for (const RdRow* r : all)
-    if (front.empty() || r->psnr > front.back()->psnr) front.push_back(r);
+  std::vector<const RdRow*> front;
+  for (const RdPoint& p : rd_front(curve_of(rows, codec)))
+    for (const RdRow& r : rows)
+      if (r.codec == codec && static_cast<double>(r.bytes) == p.rate && r.psnr == p.psnr) {
+        if (!std::isfinite(r.normal_degrees)) return {};
+        front.push_back(&r);
+        break;
+      }
   return front;
 }
 
