@@ -1,7 +1,6 @@
 #include "codec/cut_estimate.h"
 
 #include <cmath>
-#include <limits>
 #include <string>
 
 #include "remesh/geometry.h"
@@ -47,9 +46,7 @@ StatusOr<double> CutEstimate::psnr(const TriangleMesh& cut) const {
     const double c = n.dot(cut.positions[tri[2]] - positions_[tri[2]]);
     displaced += area_share_[t] * (a * a + b * b + c * c + a * b + b * c + c * a) / 6.0;
   }
-  const double squared = whole_squared_ + displaced;
-  if (!(squared > 0.0)) return std::numeric_limits<double>::infinity();
-  return 20.0 * std::log10(diag_ / std::sqrt(squared));
+  return psnr_db(diag_, std::sqrt(whole_squared_ + displaced));
 }
 
 }  // namespace srcodec

@@ -19,6 +19,10 @@
 
 namespace srcodec {
 
+double psnr_db(double peak, double rms) {
+  return rms > 0 ? 20.0 * std::log10(peak / rms) : std::numeric_limits<double>::infinity();
+}
+
 StatusOr<MeasuredSurface> measured_surface(const TriangleMesh& mesh, const char* role) {
   const size_t num_vertices = mesh.positions.size();
   if (mesh.triangles.size() > std::numeric_limits<uint32_t>::max()) {
@@ -183,8 +187,7 @@ SurfaceDistance both_ways(const std::vector<Eigen::Vector3d>& ref_samples, const
   out.rms = std::max(out.ref_to_test.rms, out.test_to_ref.rms);
   out.hausdorff = std::max(out.ref_to_test.max, out.test_to_ref.max);
   out.diag = diag;
-  out.psnr = out.rms > 0 ? 20.0 * std::log10(out.diag / out.rms)
-                         : std::numeric_limits<double>::infinity();
+  out.psnr = psnr_db(out.diag, out.rms);
   return out;
 }
 

@@ -41,6 +41,11 @@ struct SurfaceDistance {
   double psnr = 0;       // 20 log10(diag / rms); +inf when rms == 0
 };
 
+// 20 log10(peak / rms), +inf when rms is 0: the PSNR of every figure here
+// (peak the reference's bounding-box diagonal) and of the estimates and
+// measures built on it.
+double psnr_db(double peak, double rms);
+
 // A mesh reduced to what has surface: the triangles of positive area, after
 // checking that every index is valid and every used vertex finite. Both the
 // metric and the visual measure (tools/measure/visual_difference.h) see a

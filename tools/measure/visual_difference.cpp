@@ -305,7 +305,7 @@ StatusOr<VisualDifference> VisualReference::difference_to(const TriangleMesh& te
   out.mean_normal_degrees = total.both ? total.angle / total.both : 0.0;
   // Depths are in units of the bounding radius: the peak, the diagonal, is 2.
   const double depth_rms = total.agree ? std::sqrt(total.depth2 / total.agree) : 0.0;
-  out.depth_psnr = depth_rms > 0 ? 20.0 * std::log10(2.0 / depth_rms) : std::numeric_limits<double>::infinity();
+  out.depth_psnr = psnr_db(2.0, depth_rms);
 
   // Turned over: each test triangle judged at its centroid by the nearest
   // reference triangle's normal, with the one definition of a fold.
