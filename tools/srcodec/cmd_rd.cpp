@@ -86,8 +86,11 @@ class RdRun {
   RdRun(const RdCliOptions& o, TriangleMesh input) : o_(o), input_(std::move(input)) {
     metric_.samples_per_surface = o.samples;
   }
-  // The input's renders, made once for every decoded mesh to be compared with.
+  // The input's half of the metric (its samples and search) and its
+  // renders, made once for every decoded mesh to be compared with.
   Status init() {
+    SRCODEC_ASSIGN_OR_RETURN(SurfaceReference s, SurfaceReference::build(input_, metric_, cgal_search));
+    surface_ = std::make_unique<SurfaceReference>(std::move(s));
     if (o_.no_visual) return ok_status();
     SRCODEC_ASSIGN_OR_RETURN(VisualReference v, VisualReference::build(input_, o_.visual));
     visual_ = std::make_unique<VisualReference>(std::move(v));
@@ -99,7 +102,7 @@ class RdRun {
   }
   // Distortion of `decoded` against the input, and the rate of `bytes`.
   Status measure(const TriangleMesh& decoded, uint64_t bytes, RdRow& row) const {
-    SRCODEC_ASSIGN_OR_RETURN(SurfaceDistance d, cgal_surface_distance(input_, decoded, metric_));
+    SRCODEC_ASSIGN_OR_RETURN(SurfaceDistance d, surface_->distance_to(decoded));
     row.bytes = bytes;
     row.bpv = 8.0 * static_cast<double>(bytes) / static_cast<double>(input_.positions.size());
     row.psnr = d.psnr;
@@ -124,6 +127,7 @@ class RdRun {
   const RdCliOptions& o_;
   TriangleMesh input_;
   SurfaceDistanceOptions metric_;
+  std::unique_ptr<SurfaceReference> surface_;
   std::unique_ptr<VisualReference> visual_;
 };
 
