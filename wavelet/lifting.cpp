@@ -124,7 +124,9 @@ const LiftingPlan::Odd* LiftingPlan::odd_end(int32_t level) const {
   return odds_.data() + level_begin_[level];
 }
 
-StatusOr<LiftingPlan> LiftingPlan::build(const TriangleHierarchy& hierarchy, int32_t levels) {
+StatusOr<LiftingPlan> LiftingPlan::build(const TriangleHierarchy& hierarchy, int32_t levels,
+                                         const std::vector<std::array<int32_t, 2>>& base_creases) {
+  (void)base_creases;  // crease rules: not yet
   if (levels < 0) return invalid_argument("lifting: levels must be >= 0, got " + std::to_string(levels));
   LiftingPlan plan;
   plan.levels_ = levels;

@@ -33,7 +33,10 @@ class LiftingPlan {
   // `levels` = finest level to transform (>= hierarchy.max_level() is fine;
   // vertices of levels above it get no coefficient). Fails on levels < 0 or a
   // hierarchy whose level meshes are not manifold.
-  static StatusOr<LiftingPlan> build(const TriangleHierarchy& hierarchy, int32_t levels);
+  // `base_creases`: base edges (a < b, sorted, unique) along which the
+  // surface is sharp (SemiRegularMesh::crease_edges); empty: none.
+  static StatusOr<LiftingPlan> build(const TriangleHierarchy& hierarchy, int32_t levels,
+                                     const std::vector<std::array<int32_t, 2>>& base_creases = {});
 
   int32_t levels() const { return levels_; }
   int32_t base_vertex_count() const { return base_vertex_count_; }

@@ -28,6 +28,12 @@ struct SemiRegularMesh {
   // are or, where the untangling moved them, others (remesh/untangle.h).
   std::vector<Eigen::Vector3d> positions;
   int32_t levels = 0;  // the finest level built (hierarchy.max_level() may be lower if nothing was split)
+  // The base edges along which the surface is sharp (creases; the remesher
+  // lays them along the input's feature curves, remesh/features.h), each as
+  // (a, b) with a < b, sorted, no repeats. The wavelet predicts and updates
+  // along them with curve rules, and so along every edge that refines one.
+  // Empty: a smooth surface, the plain Butterfly everywhere.
+  std::vector<std::array<int32_t, 2>> crease_edges;
 
   // The mesh of `level` as a plain triangle mesh: the vertices it uses (in
   // increasing vertex id order) and its triangles re-indexed to them.
