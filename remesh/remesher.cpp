@@ -621,7 +621,7 @@ StatusOr<SemiRegularMesh> Remesher::run(RemeshReport* report, bool fit_levels) {
   SRCODEC_RETURN_IF_ERROR(refine_levels());
   fit();
   const int32_t levels = static_cast<int32_t>(rep_.levels.size());
-  SemiRegularMesh out{std::move(base_.mesh), std::move(refined_.hierarchy), std::move(positions_), levels};
+  SemiRegularMesh out{std::move(base_.mesh), std::move(refined_.hierarchy), std::move(positions_), levels, {}};
   const bool untangling = options_.fit_surface && options_.untangle && levels > 0;
   if (untangling && options_.max_loss_db > 0.0) untangle_out(&out, {});
   if (options_.max_loss_db > 0.0 && levels > 0) SRCODEC_RETURN_IF_ERROR(coarsen(&out, levels));

@@ -17,7 +17,7 @@ SemiRegularMesh two_levels_of_the_square() {
   const TriangleMesh base = test::flat_square(4);
   auto created = TriangleHierarchy::create(static_cast<int32_t>(base.positions.size()), base.triangles);
   EXPECT_TRUE(created.ok());
-  SemiRegularMesh m{base, std::move(created).value(), {}, 2};
+  SemiRegularMesh m{base, std::move(created).value(), {}, 2, {}};
   for (int32_t level = 0; level < 2; ++level) {
     const size_t count = m.hierarchy.nodes().size();
     for (size_t n = 0; n < count; ++n)
