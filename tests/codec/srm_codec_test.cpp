@@ -43,7 +43,7 @@ Case make_case(int levels, bool adaptive, uint32_t seed = 1) {
       positions[v] = bumpy(positions[e[0]] + positions[e[1]]);
     }
   }
-  Case c{SemiRegularMesh{ico, std::move(h), std::move(positions), levels}, {}};
+  Case c{SemiRegularMesh{ico, std::move(h), std::move(positions), levels, {}}, {}};
   for (int v = 0; v < 12; ++v) c.srm.base.positions[v] = c.srm.positions[v];
   c.input = c.srm.level_mesh(levels);
   return c;
