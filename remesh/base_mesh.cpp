@@ -25,6 +25,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <unordered_set>
 #include <utility>
 
 #include "format/union_find.h"
@@ -66,6 +67,39 @@ Status check_arguments(size_t n, const std::vector<int32_t>& sites, const std::v
     if (cell_of[sites[k]] != static_cast<int32_t>(k))
       return invalid_argument("build_base_mesh: site " + str(k) + " (vertex " + std::to_string(sites[k]) +
                               ") is in cell " + std::to_string(cell_of[sites[k]]) + ", not its own");
+  return ok_status();
+}
+
+uint64_t edge_key(int32_t a, int32_t b) {
+  return (static_cast<uint64_t>(std::min(a, b)) << 32) | static_cast<uint32_t>(std::max(a, b));
+}
+
+// Crease edges must be edges of the mesh, and every crease vertex that is
+// not fixed must lie on exactly two of them: a crease vertex is collapsed
+// along its one curve, which a branch or an end would not give.
+Status check_creases(const Adjacency& adj, const BaseMeshCreases& creases) {
+  const size_t n = adj.size();
+  std::vector<int32_t> degree(n, 0);
+  std::vector<char> fixed(n, 0);
+  for (int32_t v : creases.fixed) {
+    if (v < 0 || static_cast<size_t>(v) >= n)
+      return invalid_argument("build_base_mesh: fixed vertex " + std::to_string(v) + " is outside 0.." +
+                              std::to_string(static_cast<int64_t>(n) - 1));
+    fixed[v] = 1;
+  }
+  for (size_t k = 0; k < creases.edges.size(); ++k) {
+    const auto [a, b] = creases.edges[k];
+    const bool in_range = a >= 0 && b >= 0 && static_cast<size_t>(a) < n && static_cast<size_t>(b) < n;
+    if (!in_range || !std::binary_search(adj.begin(a), adj.end(a), b))
+      return invalid_argument("build_base_mesh: crease " + str(k) + " (" + std::to_string(a) + ", " +
+                              std::to_string(b) + ") is not an edge of the mesh");
+    ++degree[a];
+    ++degree[b];
+  }
+  for (size_t v = 0; v < n; ++v)
+    if (degree[v] != 0 && degree[v] != 2 && !fixed[v])
+      return invalid_argument("build_base_mesh: vertex " + str(v) + " lies on " + std::to_string(degree[v]) +
+                              " crease edges but is not fixed; the corners and ends of creases must be");
   return ok_status();
 }
 
@@ -202,7 +236,8 @@ double cross2(const Point2& a, const Point2& b) { return a.x() * b.y() - a.y() *
 
 class Collapser {
  public:
-  Collapser(const TriangleMesh& mesh, const std::vector<int32_t>& sites, BaseMeshReport& report)
+  Collapser(const TriangleMesh& mesh, const std::vector<int32_t>& sites, const BaseMeshCreases& creases,
+            BaseMeshReport& report)
       : positions_(mesh.positions), report_(report) {
     const size_t n = mesh.positions.size();
     om_.request_vertex_status();
@@ -221,6 +256,14 @@ class Collapser {
     changed_.assign(n, 1);
     ring_slot_.assign(n, -1);
     in_ring_.assign(n, 0);
+    fixed_.assign(n, 0);
+    for (int32_t v : creases.fixed) fixed_[v] = 1;
+    crease_degree_.assign(n, 0);
+    for (const auto& [a, b] : creases.edges) {
+      if (!creases_.insert(edge_key(a, b)).second) continue;
+      ++crease_degree_[a];
+      ++crease_degree_[b];
+    }
   }
 
   Status build(const TriangleMesh& mesh) {
@@ -248,11 +291,16 @@ class Collapser {
   };
 
   bool on_boundary(int32_t v) const { return om_.is_boundary(VertexHandle(v)); }
+  // On the boundary or a crease: such vertices shrink to one per run of a
+  // cell (phase 2 of build_base_mesh).
+  bool on_sharp_curve(int32_t v) const { return on_boundary(v) || crease_degree_[v] > 0; }
+  bool fixed(int32_t v) const { return fixed_[v] != 0; }
 
   // Tries to remove v by collapsing it into one of its neighbours allowed by
   // `rule`, in order of preference. True when it was removed.
   bool try_remove(int32_t v, Rule rule, const std::vector<int32_t>& cell, const std::vector<int32_t>& depth) {
     changed_[v] = 0;
+    if (fixed_[v]) return false;
     gather_ring(v);
     const int32_t k = static_cast<int32_t>(ring_.size());
     candidates_.clear();
@@ -321,6 +369,14 @@ class Collapser {
     }
     for (size_t v = 0; v < n; ++v)
       if (out.param[v].face < 0) return internal_error("build_base_mesh: vertex " + str(v) + " lost its place");
+    for (uint64_t key : creases_) {
+      const int32_t a = base_index[key >> 32], b = base_index[key & 0xffffffffu];
+      if (a < 0 || b < 0) return internal_error("build_base_mesh: a crease edge lost a vertex");
+      out.crease_edges.push_back({std::min(a, b), std::max(a, b)});
+    }
+    std::sort(out.crease_edges.begin(), out.crease_edges.end());
+    for (size_t v = 0; v < n; ++v)
+      if (!removed_[v] && !is_site_[v] && (crease_degree_[v] > 0 || fixed_[v])) ++report_.crease_vertices_kept;
     return ok_status();
   }
 
@@ -382,6 +438,17 @@ class Collapser {
       }
       const HalfedgeHandle b = out_[k - 1];  // v's outgoing boundary half-edge
       if (om_.next_halfedge_handle(om_.next_halfedge_handle(om_.next_halfedge_handle(b))) == b) {
+        ++report_.refused_link;
+        return false;
+      }
+    }
+    // Crease vertices move only along their crease, and a crease loop of
+    // three edges would close up. onward: the crease edge (v, onward) becomes (w, onward).
+    int32_t onward = -1;
+    if (crease_degree_[v] > 0) {
+      for (int32_t r : ring_)
+        if (r != w && creases_.count(edge_key(v, r))) onward = r;
+      if (!creases_.count(edge_key(v, w)) || onward < 0 || creases_.count(edge_key(onward, w))) {
         ++report_.refused_link;
         return false;
       }
@@ -471,6 +538,11 @@ class Collapser {
 
     om_.collapse(h);
     removed_[v] = 1;
+    if (onward >= 0) {
+      creases_.erase(edge_key(v, w));
+      creases_.erase(edge_key(v, onward));
+      creases_.insert(edge_key(w, onward));
+    }
     for (int32_t r : ring_) changed_[r] = 1;
     ++report_.collapses;
     for (int32_t i : keep_) corners_[faces_[i]] = {w, ring_[i], ring_[(i + 1) % k]};
@@ -520,8 +592,10 @@ class Collapser {
 
   // flat_[i] = r_i under z -> z^a, a = 2π / (angle sum) inside and π / (angle
   // sum) on the boundary; lengths are divided by their mean first so the
-  // power neither overflows nor underflows. False when the map is not a
-  // valid flattening (a degenerate angle, or one that would open past π).
+  // power neither overflows nor underflows. On a crease each side's angles
+  // are scaled to π instead (MAPS, §3.4, as for its feature lines), so v's
+  // two crease neighbours lie on a line through it. False when the map is
+  // not a valid flattening (a degenerate angle, or one that would open past π).
   bool flatten(int32_t v) {
     const int32_t k = static_cast<int32_t>(ring_.size());
     const int32_t nf = static_cast<int32_t>(faces_.size());
@@ -542,6 +616,8 @@ class Collapser {
     }
     if (!(mean > 0.0)) return false;
     const double a = (boundary_ ? kPi : 2.0 * kPi) / total;
+    scale_.assign(nf, a);
+    if (crease_degree_[v] > 0 && !boundary_ && !crease_sides(v)) return false;
     flat_.resize(k);
     double phi = 0.0;
     for (int32_t i = 0; i < k; ++i) {
@@ -551,10 +627,29 @@ class Collapser {
       if (i < nf) {
         // An old face opening to π or more would not be a triangle in the
         // plane (possible only for a very sharp interior vertex).
-        if (nf > 1 && !(a * angle_[i] < kPi * (1.0 - 1e-9))) return false;
-        phi += a * angle_[i];
+        if (nf > 1 && !(scale_[i] * angle_[i] < kPi * (1.0 - 1e-9))) return false;
+        phi += scale_[i] * angle_[i];
       }
     }
+    return true;
+  }
+
+  // scale_ for interior crease vertex v: the faces from one crease
+  // neighbour round to the other open to π, and so do the rest. False when
+  // the ring does not hold v's two crease edges.
+  bool crease_sides(int32_t v) {
+    const int32_t k = static_cast<int32_t>(ring_.size());
+    int32_t first = -1, second = -1;
+    for (int32_t i = 0; i < k; ++i)
+      if (creases_.count(edge_key(v, ring_[i]))) (first < 0 ? first : second) = i;
+    if (first < 0 || second < 0) return false;
+    double side = 0.0, total = 0.0;
+    for (int32_t i = 0; i < k; ++i) {
+      total += angle_[i];
+      if (i >= first && i < second) side += angle_[i];
+    }
+    if (!(side > 0.0) || !(total - side > 0.0)) return false;
+    for (int32_t i = 0; i < k; ++i) scale_[i] = kPi / (i >= first && i < second ? side : total - side);
     return true;
   }
 
@@ -622,13 +717,16 @@ class Collapser {
   std::vector<char> is_site_, removed_, changed_;
   std::vector<int32_t> ring_slot_;  // scratch: index in ring_ of a vertex, else -1
   std::vector<char> in_ring_;       // scratch: 1 for the vertices of ring_ during link_condition
+  std::vector<char> fixed_;                // per input vertex: never removed (BaseMeshCreases::fixed)
+  std::vector<uint8_t> crease_degree_;     // per input vertex: its crease edges (0 or 2 unless fixed)
+  std::unordered_set<uint64_t> creases_;   // the current crease edges, edge_key
 
   // Scratch for the vertex being removed.
   bool boundary_ = false;
   std::vector<int32_t> ring_, faces_, keep_;
   std::vector<HalfedgeHandle> out_;
   std::vector<Candidate> candidates_;
-  std::vector<double> angle_, length_;
+  std::vector<double> angle_, length_, scale_;
   std::vector<Point2> flat_;
   std::vector<int32_t> moving_;
   std::vector<Point2> moving_at_;
@@ -637,7 +735,8 @@ class Collapser {
 }  // namespace
 
 StatusOr<BaseMesh> build_base_mesh(const TriangleMesh& mesh, const std::vector<int32_t>& sites,
-                                   const std::vector<int32_t>& cell_of, BaseMeshReport* report) {
+                                   const std::vector<int32_t>& cell_of, BaseMeshReport* report,
+                                   const BaseMeshCreases& creases) {
   const auto started = std::chrono::steady_clock::now();
   SRCODEC_RETURN_IF_ERROR(check_mesh(mesh));
   const size_t n = mesh.positions.size();
@@ -647,10 +746,12 @@ StatusOr<BaseMesh> build_base_mesh(const TriangleMesh& mesh, const std::vector<i
   BaseMeshReport& rep = report ? *report : local;
   rep = BaseMeshReport{};
 
+  const Adjacency neighbours = vertex_neighbors(mesh.positions.size(), mesh.triangles);
+  SRCODEC_RETURN_IF_ERROR(check_creases(neighbours, creases));
   std::vector<int32_t> cell = cell_of, depth;
-  cell_depths(vertex_neighbors(mesh.positions.size(), mesh.triangles), sites, cell, depth);
+  cell_depths(neighbours, sites, cell, depth);
 
-  Collapser collapser(mesh, sites, rep);
+  Collapser collapser(mesh, sites, creases, rep);
   SRCODEC_RETURN_IF_ERROR(collapser.build(mesh));
 
   // Phase 1, towards the sites: deepest first, by depth buckets. A refused
@@ -699,22 +800,24 @@ StatusOr<BaseMesh> build_base_mesh(const TriangleMesh& mesh, const std::vector<i
   // boundary run of a cell then shrinks to one vertex (its site, when the
   // site is on it) and that one is kept, so the base boundary passes through
   // every cell that reaches the boundary instead of being spanned by long
-  // edges between a few survivors.
+  // edges between a few survivors. Crease vertices likewise.
   pending.insert(pending.end(), unreached.begin(), unreached.end());
   std::vector<int32_t> interior, boundary;
   for (int32_t v : pending) {
     collapser.mark_changed(v);  // the new rule may allow what the old one refused
-    (collapser.on_boundary(v) ? boundary : interior).push_back(v);
+    (collapser.on_sharp_curve(v) ? boundary : interior).push_back(v);
   }
   for (size_t before = SIZE_MAX; before != boundary.size() + interior.size();) {
     before = boundary.size() + interior.size();
     boundary = passes(std::move(boundary), Collapser::Rule::kSameCell);
     interior = passes(std::move(interior), Collapser::Rule::kAny);
   }
-  rep.boundary_vertices_kept = boundary.size();
+  rep.boundary_vertices_kept = static_cast<size_t>(
+      std::count_if(boundary.begin(), boundary.end(), [&](int32_t v) { return collapser.on_boundary(v); }));
 
   BaseMesh out;
   SRCODEC_RETURN_IF_ERROR(collapser.finish(sites, out));
+  out.input_creases = creases;
   rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return out;
 }

@@ -5,6 +5,7 @@
 // the base mesh is built along the way.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -15,6 +16,20 @@
 
 namespace srcodec {
 
+// Sharp features the base mesh keeps, as MAPS keeps feature lines (Lee et
+// al. 1998, §3.4): a vertex on a crease is removed only by a collapse along
+// the crease into its neighbour on it, so every crease becomes a chain of
+// base edges through the cells it crosses; the vertices where creases meet
+// or end are never removed.
+struct BaseMeshCreases {
+  // Input edges (a < b) along which the surface is sharp. Each vertex on
+  // them must have exactly two, or be in `fixed`.
+  std::vector<std::array<int32_t, 2>> edges;
+  // Input vertices kept as base vertices whatever their cells: corners and
+  // ends of the creases (remesh/features.h).
+  std::vector<int32_t> fixed;
+};
+
 struct BaseMesh {
   // The base triangles. positions[b] is the position of input vertex
   // input_vertex[b]; triangles keep the input's orientation.
@@ -23,6 +38,12 @@ struct BaseMesh {
   // Per input vertex: where it lies on the base domain. A vertex that became
   // base vertex b has weight 1 at b's corner of one of b's triangles.
   std::vector<ParamPoint> param;
+  // The base edges that follow the input's creases (BaseMeshCreases), each
+  // (a, b) with a < b in base vertex numbers, sorted; empty without creases.
+  std::vector<std::array<int32_t, 2>> crease_edges;
+  // The creases it was built to follow (build_base_mesh's `creases`), in
+  // input vertex numbers: where the refinement keeps its crease vertices.
+  BaseMeshCreases input_creases;
 };
 
 struct BaseMeshReport {
@@ -41,6 +62,9 @@ struct BaseMeshReport {
   // Points found more than 1e-6 (in barycentrics) outside every triangle of
   // the new fan, placed on the nearest one.
   size_t clamped_points = 0;
+  // Of `promoted_vertices`, those on creases: the fixed ones, and one per
+  // run of a cell's crease vertices (as on the boundary).
+  size_t crease_vertices_kept = 0;
   double seconds = 0.0;
 };
 
@@ -63,10 +87,18 @@ struct BaseMeshReport {
 //  - A non-site vertex that can never be collapsed is kept as a base vertex
 //    and counted in report->promoted_vertices: the result is always a valid
 //    mesh, never a partial one.
+//  - With `creases`, crease vertices collapse only along their crease, in
+//    the boundary's phase (one kept per run of a cell), and the fixed ones
+//    stay; the 1-ring of a crease vertex is flattened with each side of the
+//    crease opened to π, so the points on the crease land on the base edge
+//    that replaces it.
 //  - Deterministic.
-// Errors: kInvalidArgument for bad or repeated site indices or a cell_of of
-// the wrong size; kInvalidMesh when `mesh` is not as described above.
+// Errors: kInvalidArgument for bad or repeated site indices, a cell_of of
+// the wrong size, or creases that are not edges of `mesh` or branch at a
+// vertex that is not fixed; kInvalidMesh when `mesh` is not as described
+// above.
 StatusOr<BaseMesh> build_base_mesh(const TriangleMesh& mesh, const std::vector<int32_t>& sites,
-                                   const std::vector<int32_t>& cell_of, BaseMeshReport* report = nullptr);
+                                   const std::vector<int32_t>& cell_of, BaseMeshReport* report = nullptr,
+                                   const BaseMeshCreases& creases = {});
 
 }  // namespace srcodec

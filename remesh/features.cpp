@@ -227,6 +227,11 @@ std::vector<FeatureEdge> without_scratches(const TriangleMesh& mesh, std::vector
 
 }  // namespace
 
+std::vector<FeatureCurve> chain_feature_curves(size_t vertex_count, const std::vector<FeatureEdge>& edges,
+                                               const std::vector<char>& stops) {
+  return chain(feature_star(vertex_count, edges), edges, stops);
+}
+
 bool Features::is_feature(int32_t a, int32_t b) const {
   if (a > b) std::swap(a, b);
   const auto it = std::lower_bound(edges.begin(), edges.end(), std::make_pair(a, b),

@@ -67,6 +67,12 @@ struct Features {
   bool is_feature(int32_t a, int32_t b) const;
 };
 
+// Feature edges (indices below vertex_count) walked into curves: from every
+// vertex `stops` marks (a corner or an end) along each of its edges to the
+// next stop, then the closed loops left (back() == front()).
+std::vector<FeatureCurve> chain_feature_curves(size_t vertex_count, const std::vector<FeatureEdge>& edges,
+                                               const std::vector<char>& stops);
+
 // Indices must be valid (TriangleMesh as read and cleaned); triangles of no
 // area have no normal and never make a crease.
 Features detect_features(const TriangleMesh& mesh, const FeatureOptions& options = {});

@@ -97,7 +97,7 @@ void Refiner::untangle_off_input(RefineLevelReport& lr) {
     for (const auto& tri : folded_triangles()) {
       if (!folded(tri, -1, -1)) continue;
       for (int32_t s : tri) {
-        if (neighbors_.begin(s) == neighbors_.end(s)) continue;
+        if (neighbors_.begin(s) == neighbors_.end(s) || keeps_to_crease(s)) continue;
         const int32_t from = anchor_[s];
         const int32_t i = add_point(neighbour_mean(s), param_[from], normals_[from], site_on_boundary_[s]);
         if (better_star(star_quality(s, i), star_quality(s, from))) {
@@ -199,7 +199,7 @@ size_t Refiner::midpoint_patch(const std::vector<int32_t>& patch, int32_t level)
   const size_t points_before = points_.size();
   std::vector<int32_t> moved, old;
   for (int32_t s : patch) {
-    if (h_.vertex_level(s) != level) continue;
+    if (h_.vertex_level(s) != level || keeps_to_crease(s)) continue;
     const auto edge = h_.parent_edge(s);
     const int32_t a = anchor_[edge[0]], b = anchor_[edge[1]];
     Eigen::Vector3d normal = normals_[a] + normals_[b];
@@ -225,6 +225,7 @@ size_t Refiner::smooth_patch(const std::vector<int32_t>& patch) {
   std::vector<std::array<int32_t, 2>> rim;
   for (int32_t s : patch) {
     std::array<int32_t, 2> along{-1, -1};
+    if (keeps_to_crease(s)) continue;
     if (site_on_boundary_[s]) {
       if (rim_prev_[s] < 0 || rim_next_[s] < 0) continue;  // a corner where boundary loops touch: stays
       along = {rim_prev_[s], rim_next_[s]};

@@ -14,9 +14,11 @@ namespace srcodec {
 // Each level's triangles (levels 0 to `levels` of `hierarchy`), and the
 // vertices the fit, the untangling and the coarsening's refit leave where
 // they are (`fixed` nonzero): the base vertices (ids below `base_vertices`:
-// the paper's sites, input vertices) and the boundary vertices of the finest
-// level (on the input's boundary), among `vertices`. The base vertices off
-// the boundary are kOnInputVertices: the untangling may move them onto other
+// the paper's sites, input vertices), the boundary vertices of the finest
+// level (on the input's boundary) and the vertices on its crease edges
+// (format/semi_regular/creases.h, from `base_creases`: on the input's
+// creases), among `vertices`. The base vertices off the boundary and the
+// creases are kOnInputVertices: the untangling may move them onto other
 // input vertices (remesh/untangle.h), the rest keep them where they are.
 struct LevelsToMove {
   static constexpr char kFixed = 1, kOnInputVertices = 2;
@@ -24,6 +26,6 @@ struct LevelsToMove {
   std::vector<char> fixed;
 };
 LevelsToMove levels_to_move(const TriangleHierarchy& hierarchy, int32_t levels, size_t base_vertices,
-                            size_t vertices);
+                            size_t vertices, const std::vector<std::array<int32_t, 2>>& base_creases = {});
 
 }  // namespace srcodec

@@ -41,6 +41,7 @@ void Refiner::build_level_mesh(int32_t level) {
     rim_next_[a] = rim_next_[a] == -1 ? b : -2;  // -2: a vertex where boundaries touch
     rim_prev_[b] = rim_prev_[b] == -1 ? a : -2;
   });
+  build_level_creases(level);
   // The coarser levels' meshes too: sites of every level move, and each
   // level's mesh must stay unfolded, not only the finest.
   coarse_triangles_.resize(level);
@@ -52,7 +53,8 @@ void Refiner::build_level_mesh(int32_t level) {
 }
 
 bool Refiner::allowed(int32_t site, int32_t i) const {
-  return site_on_boundary_[site] == input_on_boundary_[i] && (!site_on_boundary_[site] || on_rim_arc(site, i));
+  return site_on_boundary_[site] == input_on_boundary_[i] && (!site_on_boundary_[site] || on_rim_arc(site, i)) &&
+         (!has_creases_ || crease_allowed(site, i));
 }
 
 void Refiner::build_loops() {

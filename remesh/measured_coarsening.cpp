@@ -114,7 +114,7 @@ SemiRegularMesh deepened(const TriangleMesh& input, const TriangleMesh& sides, c
   }
   if (!fit) return out;
   const LevelsToMove moving =
-      levels_to_move(out.hierarchy, out.levels, out.base.positions.size(), out.positions.size());
+      levels_to_move(out.hierarchy, out.levels, out.base.positions.size(), out.positions.size(), out.crease_edges);
   std::vector<char> fixed = moving.fixed;
   std::fill(fixed.begin(), fixed.begin() + old_vertices, 1);
   fit_to_surface(input, sides, moving.triangles, fixed, &out.positions, *fit, &near_input);
@@ -421,7 +421,8 @@ Result Refit::operator()(Choice choice, double* loss_before_refit) const {
   if (loss_before_refit) *loss_before_refit = r.loss_db;
   if (!options.refit || r.mesh.levels < 1) return r;
   const LevelsToMove moving =
-      levels_to_move(r.mesh.hierarchy, r.mesh.levels, r.mesh.base.positions.size(), r.mesh.positions.size());
+      levels_to_move(r.mesh.hierarchy, r.mesh.levels, r.mesh.base.positions.size(), r.mesh.positions.size(),
+                     r.mesh.crease_edges);
   const auto& finest = moving.triangles.back();
   // The finest level's triangles left unsplit: candidates now whole
   // (their corners are coarser than the children around them; after

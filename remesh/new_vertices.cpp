@@ -98,7 +98,7 @@ Status Refiner::place_new_vertex(int32_t v) {
       // edge: the new vertex goes to the input surface point nearest the
       // edge's midpoint instead (a forced split would otherwise stack
       // vertices and fold the mesh).
-      if (!site_on_boundary_[v] && std::sqrt(best_d) > kSparseFraction * edge_length) {
+      if (!site_on_boundary_[v] && !keeps_to_crease(v) && std::sqrt(best_d) > kSparseFraction * edge_length) {
         const int32_t on_surface = surface_point(midpoint, p.face, best_d);
         if (on_surface >= 0) {
           ++surface_vertices_;
@@ -144,13 +144,22 @@ Status Refiner::place_new_vertex(int32_t v) {
   Eigen::Vector3d normal = normals_[anchor_[edge[0]]] + normals_[anchor_[edge[1]]];
   if (normal.norm() > 0.0) normal.normalize();
   // On the boundary: halfway along the input's boundary between the
-  // edge's ends (the chord's midpoint when they are neighbours on it).
+  // edge's ends (the chord's midpoint when they are neighbours on it); on a
+  // crease, halfway along the crease.
   Eigen::Vector3d x = midpoint;
   double place = 0.0;
   const bool on_rim = site_on_boundary_[v] && rim_prev_[v] >= 0 && rim_next_[v] >= 0 &&
                       rim_middle(rim_prev_[v], rim_next_[v], &x, &place);
+  int32_t curve = -1;
+  const bool on_crease = keeps_to_crease(v) && site_crease_degree_[v] == 2 &&
+                         crease_middle(site_crease_ends_[v][0], site_crease_ends_[v][1], &x, &curve, &place);
   const int32_t i =
       add_point(x, p, normal, site_on_boundary_[v], on_rim ? loop_[anchor_[rim_prev_[v]]] : -1, place);
+  if (on_crease) {
+    point_crease_[i] = 1;
+    curve_[i] = curve;
+    curve_pos_[i] = place;
+  }
   ++midpoint_vertices_;
   return take(v, i);
 }
@@ -266,6 +275,11 @@ int32_t Refiner::add_point(const Eigen::Vector3d& x, const ParamPoint& p, const 
   input_on_boundary_.push_back(boundary);
   loop_.push_back(loop);
   loop_pos_.push_back(place);
+  if (has_creases_) {  // off the creases unless the caller puts it on one
+    point_crease_.push_back(0);
+    curve_.push_back(-1);
+    curve_pos_.push_back(0.0);
+  }
   return static_cast<int32_t>(points_.size() - 1);
 }
 
@@ -278,6 +292,11 @@ void Refiner::drop_last_point() {
   input_on_boundary_.pop_back();
   loop_.pop_back();
   loop_pos_.pop_back();
+  if (has_creases_) {
+    point_crease_.pop_back();
+    curve_.pop_back();
+    curve_pos_.pop_back();
+  }
 }
 
 }  // namespace srcodec

@@ -6,9 +6,11 @@
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Tools/Subdivider/Uniform/LoopT.hh>
 #include <OpenMesh/Tools/Subdivider/Uniform/ModifiedButterFlyT.hh>
+#include <algorithm>
 #include <string>
 #include <unordered_map>
 
+#include "remesh/adjacency.h"
 #include "remesh/openmesh_types.h"
 
 namespace srcodec {
@@ -107,6 +109,35 @@ StatusOr<TriangleMesh> oversample(const TriangleMesh& mesh, OversampleScheme sch
     int c = 0;
     for (const auto vh : om.fv_range(fh)) tri[c++] = vh.idx();
     out.triangles.push_back(tri);
+  }
+  return out;
+}
+
+StatusOr<TriangleMesh> oversample(const TriangleMesh& mesh, OversampleScheme scheme, int steps,
+                                  std::vector<std::array<int32_t, 2>>* creases) {
+  if (!creases || creases->empty()) return oversample(mesh, scheme, steps);
+  // One step at a time: every scheme keeps the old vertices' numbers and
+  // puts one new vertex on each old edge, the only new vertex both its ends
+  // are joined to, so each crease edge's halves are found by adjacency.
+  TriangleMesh out = mesh;
+  for (int s = 0; s < steps; ++s) {
+    const int32_t old_count = static_cast<int32_t>(out.positions.size());
+    SRCODEC_ASSIGN_OR_RETURN(out, oversample(out, scheme, 1));
+    const Adjacency adj = vertex_neighbors(out.positions.size(), out.triangles);
+    std::vector<std::array<int32_t, 2>> halves;
+    halves.reserve(2 * creases->size());
+    for (const auto& [a, b] : *creases) {
+      int32_t middle = -1;
+      for (const int32_t* m = adj.begin(a); m != adj.end(a); ++m)
+        if (*m >= old_count && std::binary_search(adj.begin(b), adj.end(b), *m)) middle = *m;
+      if (middle < 0)
+        return invalid_argument("oversample: crease (" + std::to_string(a) + ", " + std::to_string(b) +
+                                ") is not an edge of the mesh");
+      halves.push_back({std::min(a, middle), std::max(a, middle)});
+      halves.push_back({std::min(b, middle), std::max(b, middle)});
+    }
+    std::sort(halves.begin(), halves.end());
+    *creases = std::move(halves);
   }
   return out;
 }

@@ -9,7 +9,10 @@
 #pragma once
 
 
+#include <array>
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "format/mesh.h"
 #include "format/status.h"
@@ -32,5 +35,10 @@ StatusOr<OversampleScheme> parse_oversample_scheme(const std::string& name, cons
 // outside the vertices, or (Butterfly, Loop) a mesh OpenMesh cannot take as
 // a manifold.
 StatusOr<TriangleMesh> oversample(const TriangleMesh& mesh, OversampleScheme scheme, int steps);
+
+// The same, carrying `creases` (edges (a, b) of `mesh`, a < b) through: on
+// return each is replaced by the 2^steps edges that subdivide it, sorted.
+StatusOr<TriangleMesh> oversample(const TriangleMesh& mesh, OversampleScheme scheme, int steps,
+                                  std::vector<std::array<int32_t, 2>>* creases);
 
 }  // namespace srcodec

@@ -18,7 +18,8 @@ size_t Refiner::reparam_patch(const std::vector<int32_t>& patch, int32_t level) 
   // local ids (sites, sorted), whose rim stays put.
   std::vector<int32_t> movable, tri_ids, sites;
   for (int32_t s : patch)
-    if (!site_on_boundary_[s] && neighbors_.begin(s) != neighbors_.end(s)) movable.push_back(s);
+    if (!site_on_boundary_[s] && !keeps_to_crease(s) && neighbors_.begin(s) != neighbors_.end(s))
+      movable.push_back(s);
   if (movable.empty()) return 0;
   for (int32_t s : movable) tri_ids.insert(tri_ids.end(), around_.begin(s), around_.end(s));
   std::sort(tri_ids.begin(), tri_ids.end());

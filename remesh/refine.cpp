@@ -32,6 +32,7 @@ Refiner::Refiner(const TriangleMesh& input, const BaseMesh& base, const RefineOp
   input_tree_.buildIndex();
   build_face_points();
   build_loops();
+  build_curves();
   anchor_ = base.input_vertex;
   for (size_t v = 0; v < anchor_.size(); ++v) site_of_[anchor_[v]] = static_cast<int32_t>(v);
 }

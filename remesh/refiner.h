@@ -130,6 +130,33 @@ class Refiner {
   // cycle) and its place along it.
   void build_loops();
 
+  // Creases (crease_sites.cpp; RemeshOptions::features): the vertices on the
+  // base mesh's crease edges and on the edges refining them stay on the
+  // input's creases, as boundary vertices stay on its boundary. A site on
+  // one crease of its level's mesh relaxes along the input's crease between
+  // its two crease neighbours; one where creases meet or end, or on an input
+  // corner, stays; the others keep off the creases.
+  // The input's creases as curves (per point: crease kind, curve, place).
+  void build_curves();
+  // The current level's crease edges: each site's crease degree and its
+  // crease neighbours.
+  void build_level_creases(int32_t level);
+  bool crease_allowed(int32_t site, int32_t i) const;
+  // Whether site s keeps to a crease (the repairs leave such sites alone).
+  bool keeps_to_crease(int32_t s) const;
+  // The input curve holding points a and b (a fixed point is on the curves
+  // it ends), -1 if none.
+  int32_t common_curve(int32_t a, int32_t b) const;
+  // Point i's place along curve c, -1 when it is not on it.
+  double place_on(int32_t c, int32_t i) const;
+  // Whether point i lies strictly between sites' points along their curve:
+  // on a closed curve the arc holding `own` (a point), else the shorter.
+  bool between_on_curve(int32_t a, int32_t b, int32_t own, int32_t i) const;
+  // The point of the input's crease halfway along the curve between site a's
+  // point and site b's, with its curve and place; false when they share no
+  // curve.
+  bool crease_middle(int32_t a, int32_t b, Eigen::Vector3d* x, int32_t* curve, double* place) const;
+
   // How far along their loop (in its vertices) point `to` comes after point
   // `from`, in [0, length); both on one loop.
   double along_loop(int32_t from, int32_t to) const;
@@ -515,6 +542,21 @@ class Refiner {
   // Per site, in the current level's mesh: the boundary neighbours before
   // and after it along the way its boundary edges run (-1: none, -2: more).
   std::vector<int32_t> rim_prev_, rim_next_;
+  // build_curves' (empty without creases): per point, 0 off the creases, 1
+  // on one, 2 a fixed point (a corner or end, BaseMeshCreases::fixed); its
+  // curve (-1 for 0 and 2) and place along it; each curve's points in order
+  // (back() == front() on a closed one); (fixed point, curve) pairs, sorted,
+  // for each curve a fixed point ends.
+  bool has_creases_ = false;
+  std::vector<char> point_crease_;
+  std::vector<int32_t> curve_;
+  std::vector<double> curve_pos_;
+  std::vector<std::vector<int32_t>> curve_walk_;
+  std::vector<std::pair<int32_t, int32_t>> curves_at_fixed_;
+  // Per site, in the current level's mesh: its crease edges, saturated at
+  // 255, and the other ends of its first two.
+  std::vector<uint8_t> site_crease_degree_;
+  std::vector<std::array<int32_t, 2>> site_crease_ends_;
 };
 
 }  // namespace srcodec

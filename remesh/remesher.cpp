@@ -9,6 +9,7 @@
 #include "remesh/base_mesh.h"
 #include "remesh/boundary_tips.h"
 #include "remesh/components.h"
+#include "remesh/features.h"
 #include "remesh/geometry.h"
 #include "remesh/levels_to_move.h"
 #include "remesh/lbg_sites.h"
@@ -122,6 +123,33 @@ size_t default_base_vertices(size_t input_vertices, size_t components, int level
 
 namespace {
 
+// The input's creases as the base mesh keeps them (RemeshOptions::features):
+// the crease edges, and fixed their corners and ends and any vertex that is
+// not on exactly two crease edges away from the boundary (where creases
+// branch, stop, or run into the boundary).
+BaseMeshCreases creases_to_keep(const TriangleMesh& part) {
+  const Features features = detect_features(part);
+  BaseMeshCreases out;
+  std::vector<int32_t> degree(part.positions.size(), 0);
+  std::vector<char> on_boundary(part.positions.size(), 0);
+  for (const FeatureEdge& e : features.edges) {
+    if (e.kind == FeatureKind::kBoundary) {
+      on_boundary[e.a] = on_boundary[e.b] = 1;
+      continue;
+    }
+    out.edges.push_back({e.a, e.b});
+    ++degree[e.a];
+    ++degree[e.b];
+  }
+  out.fixed = features.corners;
+  out.fixed.insert(out.fixed.end(), features.ends.begin(), features.ends.end());
+  for (size_t v = 0; v < degree.size(); ++v)
+    if (degree[v] > 0 && (degree[v] != 2 || on_boundary[v])) out.fixed.push_back(static_cast<int32_t>(v));
+  std::sort(out.fixed.begin(), out.fixed.end());
+  out.fixed.erase(std::unique(out.fixed.begin(), out.fixed.end()), out.fixed.end());
+  return out;
+}
+
 // Checks what remesh() is asked before any work.
 Status check_options(const RemeshOptions& options) {
   if (options.levels < 0 || options.levels > 12)
@@ -203,6 +231,7 @@ class Remesher {
   const RemeshOptions& options_;
   RemeshReport& rep_;
   std::vector<ComponentMesh> parts_;
+  std::vector<BaseMeshCreases> creases_;  // per component, with RemeshOptions::features
   std::vector<size_t> share_;
   size_t base_total_ = 0;
   double finest_ = 0.0;
@@ -262,8 +291,11 @@ Status Remesher::split_and_oversample() {
   const std::vector<int> steps = oversampling_steps(options_.levels, options_.oversample);
   SRCODEC_RETURN_IF_ERROR(check_memory(steps));
   const auto start = std::chrono::steady_clock::now();
+  creases_.assign(parts_.size(), BaseMeshCreases{});
   for (size_t c = 0; c < parts_.size(); ++c) {
-    SRCODEC_ASSIGN_OR_RETURN(parts_[c].mesh, oversample(parts_[c].mesh, options_.scheme, steps[c]));
+    if (options_.features) creases_[c] = creases_to_keep(parts_[c].mesh);
+    SRCODEC_ASSIGN_OR_RETURN(parts_[c].mesh,
+                             oversample(parts_[c].mesh, options_.scheme, steps[c], &creases_[c].edges));
     rep_.component_oversample_steps.push_back(steps[c]);
     rep_.oversample_steps = std::max(rep_.oversample_steps, steps[c]);
     rep_.oversampled_vertices += parts_[c].mesh.positions.size();
@@ -414,10 +446,14 @@ Status Remesher::build_base() {
   for (size_t c = 0; c < parts_.size(); ++c) {
     const TriangleMesh& part = parts_[c].mesh;
     BaseMeshReport base_report;
-    auto built = build_base_mesh(part, cells[c].sites, cells[c].cell_of, &base_report);
+    auto built = build_base_mesh(part, cells[c].sites, cells[c].cell_of, &base_report, creases_[c]);
     if (!built.ok()) return built.status().with_context("component " + std::to_string(c));
     cells[c] = VoronoiCells{};  // its memory back before the next component's collapses
+    creases_[c] = BaseMeshCreases{};
     rep_.promoted_vertices += base_report.promoted_vertices;
+    rep_.crease_vertices_kept += base_report.crease_vertices_kept;
+    const int32_t base_offset = static_cast<int32_t>(base_.mesh.positions.size());
+    for (const auto& [a, b] : built->crease_edges) base_.crease_edges.push_back({a + base_offset, b + base_offset});
 
     const int32_t input_offset = static_cast<int32_t>(input_.positions.size());
     const int32_t face_offset = static_cast<int32_t>(base_.mesh.triangles.size());
@@ -425,6 +461,9 @@ Status Remesher::build_base() {
     parts_[c].mesh = TriangleMesh{};  // input_ holds it now; nothing after the base needs the parts
     append_mesh(base_.mesh, built->mesh);
     for (int32_t v : built->input_vertex) base_.input_vertex.push_back(v + input_offset);
+    for (const auto& [a, b] : built->input_creases.edges)
+      base_.input_creases.edges.push_back({a + input_offset, b + input_offset});
+    for (int32_t v : built->input_creases.fixed) base_.input_creases.fixed.push_back(v + input_offset);
     for (ParamPoint p : built->param) {
       p.face += face_offset;
       base_.param.push_back(p);
@@ -433,6 +472,7 @@ Status Remesher::build_base() {
   const double base_s = seconds_since(t0);
   rep_.seconds_base = base_s;
   rep_.base_vertices = base_.mesh.positions.size();
+  rep_.base_crease_edges = base_.crease_edges.size();
   RemeshProgress p;
   p.step = RemeshStep::kBaseMesh;
   p.triangles = base_.mesh.triangles.size();
@@ -473,7 +513,7 @@ void Remesher::fit() {
   const int32_t levels = static_cast<int32_t>(rep_.levels.size());
   if (!options_.fit_surface || levels == 0) return;
   const LevelsToMove moving =
-      levels_to_move(refined_.hierarchy, levels, base_.mesh.positions.size(), positions_.size());
+      levels_to_move(refined_.hierarchy, levels, base_.mesh.positions.size(), positions_.size(), base_.crease_edges);
   rep_.fit = fit_to_surface(mesh_, input_, moving.triangles, moving.fixed, &positions_);
   RemeshProgress p;
   p.step = RemeshStep::kFit;
@@ -484,7 +524,8 @@ void Remesher::fit() {
 // The untangling (last; with --max-loss also before the coarsening, so
 // that its loss is judged against the untangled full refinement).
 void Remesher::untangle_out(SemiRegularMesh* m, const UntangleOptions& untangle_options) {
-  const LevelsToMove tangled = levels_to_move(m->hierarchy, m->levels, m->base.positions.size(), m->positions.size());
+  const LevelsToMove tangled =
+      levels_to_move(m->hierarchy, m->levels, m->base.positions.size(), m->positions.size(), m->crease_edges);
   const auto set_up = std::chrono::steady_clock::now();
   UntangleReport r = untangle(untangle_data(), tangled.triangles, tangled.fixed, &m->positions, untangle_options);
   r.seconds = seconds_since(set_up);  // with the input's set-up, the first time
@@ -592,7 +633,8 @@ void Remesher::relax_and_place(SemiRegularMesh* out) {
   const bool placing = rep_.untangle.rounds > 0 && rep_.untangle.after.total() > 0;
   const LevelsToMove final_levels =
       relaxing || placing
-          ? levels_to_move(out->hierarchy, out->levels, out->base.positions.size(), out->positions.size())
+          ? levels_to_move(out->hierarchy, out->levels, out->base.positions.size(), out->positions.size(),
+                           out->crease_edges)
           : LevelsToMove{};
   // No triangle of any level folds or pleats more or less (relax_slivers
   // moves no vertex of a tangled triangle and refuses moves that tangle
@@ -621,7 +663,8 @@ StatusOr<SemiRegularMesh> Remesher::run(RemeshReport* report, bool fit_levels) {
   SRCODEC_RETURN_IF_ERROR(refine_levels());
   fit();
   const int32_t levels = static_cast<int32_t>(rep_.levels.size());
-  SemiRegularMesh out{std::move(base_.mesh), std::move(refined_.hierarchy), std::move(positions_), levels, {}};
+  SemiRegularMesh out{std::move(base_.mesh), std::move(refined_.hierarchy), std::move(positions_), levels,
+                      std::move(base_.crease_edges)};
   const bool untangling = options_.fit_surface && options_.untangle && levels > 0;
   if (untangling && options_.max_loss_db > 0.0) untangle_out(&out, {});
   if (options_.max_loss_db > 0.0 && levels > 0) SRCODEC_RETURN_IF_ERROR(coarsen(&out, levels));

@@ -86,6 +86,11 @@ struct RemeshOptions {
   // rounder (remesh/relax_slivers.h; ours): slivers are where coding error
   // turns triangles over.
   bool relax_slivers = true;
+  // Keep the input's creases (remesh/features.h) as chains of base edges,
+  // their corners and ends as base vertices, and record them in
+  // SemiRegularMesh::crease_edges. The later stages do not yet keep the
+  // vertices refining those edges on the creases. Off by default until they do.
+  bool features = false;
   RemeshProgressCallback progress;  // after each step (remesh/progress.h), may be empty
 };
 
@@ -96,6 +101,8 @@ struct RemeshReport {
   size_t oversampled_vertices = 0;
   size_t base_vertices = 0;       // including promoted ones
   size_t promoted_vertices = 0;   // non-sites the base mesh had to keep (see build_base_mesh)
+  size_t crease_vertices_kept = 0;  // of those, on creases (RemeshOptions::features)
+  size_t base_crease_edges = 0;     // base edges along the input's creases (RemeshOptions::features)
   size_t curled_sites = 0;        // sites added to split cells that wrap around thin parts (kMinCellFlatness)
   size_t tip_sites = 0;           // sites added at the tips of narrow holes (remesh/boundary_tips.h)
   // The threshold was judged on a uniform refinement (RefineOptions), not

@@ -24,7 +24,7 @@ size_t Refiner::mend_spikes() {
   std::vector<std::pair<int32_t, double>> spikes;  // site, its neighbours' median edge
   std::vector<double> around;
   for (int32_t s = 0; s < sites; ++s) {
-    if (!in_mesh(s) || site_on_boundary_[s]) continue;
+    if (!in_mesh(s) || site_on_boundary_[s] || keeps_to_crease(s)) continue;
     around.clear();
     for (const int32_t* n = neighbors_.begin(s); n != neighbors_.end(s); ++n) around.push_back(edge[*n]);
     std::nth_element(around.begin(), around.begin() + around.size() / 2, around.end());

@@ -62,6 +62,8 @@ JsonWriter summary_json(const RemeshCliOptions& o, const TriangleMesh& input, co
       .field("oversampled_vertices", report.oversampled_vertices)
       .field("base_vertices", report.base_vertices)
       .field("promoted_vertices", report.promoted_vertices)
+      .field("crease_vertices_kept", report.crease_vertices_kept)
+      .field("base_crease_edges", report.base_crease_edges)
       .field("curled_sites", report.curled_sites)
       .field("tip_sites", report.tip_sites)
       .field("uniform", options.uniform)

@@ -43,6 +43,9 @@ void add_remesh_flags(Subcommand& cmd, RemeshFlags& f) {
              "Oversampling scheme: butterfly (the paper's), loop (the paper's comparison, its Fig. 6), or linear "
              "(ours: keeps the input's facets)")
       .show_default();
+  cmd.flag("--features", f.features,
+           "Keep the input's sharp creases: base edges along them, their corners as base vertices, the vertices "
+           "refining them on them (off by default while the coding's crease rules are being completed)");
 }
 
 void add_experiment_flags(Subcommand& cmd, RemeshFlags& f) {
@@ -84,6 +87,7 @@ StatusOr<RemeshOptions> to_remesh_options(const RemeshFlags& o) {
   r.untangle = o.untangle;
   r.unsplit_tangles = o.unsplit_tangles;
   r.relax_slivers = o.relax_slivers;
+  r.features = o.features;
   if (o.oversample == "auto") {
     r.oversample = -1;
   } else if (o.oversample.size() == 1 && o.oversample[0] >= '0' && o.oversample[0] <= '3') {
