@@ -148,4 +148,20 @@ double json_number(const std::string& json, const std::string& key) {
   return std::stod(m[1]);
 }
 
+// The cube [-1, 1]^3, each face an n x n grid, faces facing out.
+TriangleMesh grid_cube(int n) {
+  GridBuilder g;
+  for (int axis = 0; axis < 3; ++axis)
+    for (double s : {-1.0, 1.0})
+      g.patch(n, [&](double u, double v) {
+        Eigen::Vector3d p;
+        p[axis] = s;
+        // Swap the grid's directions on one side so both faces face out.
+        p[(axis + 1) % 3] = 2 * (s > 0 ? u : v) - 1;
+        p[(axis + 2) % 3] = 2 * (s > 0 ? v : u) - 1;
+        return p;
+      });
+  return g.mesh;
+}
+
 }  // namespace srcodec::test

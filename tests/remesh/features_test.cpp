@@ -23,50 +23,8 @@ size_t count(const Features& f, FeatureKind kind) {
   return n;
 }
 
-// A mesh from a grid of n x n quads per patch, each patch a map from [0, 1]^2
-// into space; vertices at the same place are one.
-class GridBuilder {
- public:
-  template <class Map>
-  void patch(int n, Map&& at) {
-    std::vector<int32_t> index((n + 1) * (n + 1));
-    for (int i = 0; i <= n; ++i)
-      for (int j = 0; j <= n; ++j) index[i * (n + 1) + j] = vertex(at(double(i) / n, double(j) / n));
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j) {
-        const int32_t a = index[i * (n + 1) + j], b = index[(i + 1) * (n + 1) + j];
-        const int32_t c = index[(i + 1) * (n + 1) + j + 1], d = index[i * (n + 1) + j + 1];
-        mesh.triangles.push_back({a, b, c});
-        mesh.triangles.push_back({a, c, d});
-      }
-  }
-  TriangleMesh mesh;
-
- private:
-  int32_t vertex(const Eigen::Vector3d& p) {
-    const std::array<long long, 3> key{std::llround(p.x() * 1e6), std::llround(p.y() * 1e6), std::llround(p.z() * 1e6)};
-    const auto [it, added] = where_.emplace(key, static_cast<int32_t>(mesh.positions.size()));
-    if (added) mesh.positions.push_back(p);
-    return it->second;
-  }
-  std::map<std::array<long long, 3>, int32_t> where_;
-};
-
-// The cube [-1, 1]^3, each face an n x n grid, faces facing out.
-TriangleMesh grid_cube(int n) {
-  GridBuilder g;
-  for (int axis = 0; axis < 3; ++axis)
-    for (double s : {-1.0, 1.0})
-      g.patch(n, [&](double u, double v) {
-        Eigen::Vector3d p;
-        p[axis] = s;
-        // Swap the grid's directions on one side so both faces face out.
-        p[(axis + 1) % 3] = 2 * (s > 0 ? u : v) - 1;
-        p[(axis + 2) % 3] = 2 * (s > 0 ? v : u) - 1;
-        return p;
-      });
-  return g.mesh;
-}
+using test::grid_cube;
+using test::GridBuilder;
 
 TEST(Features, CubeHasTwelveEdgesAndEightCorners) {
   const int n = 8;

@@ -1,0 +1,181 @@
+// Creases through the remesher (RemeshOptions::features) on a cube, whose
+// creases are known: the crease edges of each level of a hierarchy
+// (format/semi_regular/creases.h), the oversampling's halves of crease
+// edges, a base mesh whose edges follow the cube's twelve edges, and a whole
+// remesh whose crease vertices lie on them at every level.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+
+#include "format/semi_regular/creases.h"
+#include "remesh/base_mesh.h"
+#include "remesh/features.h"
+#include "remesh/lbg_sites.h"
+#include "remesh/oversample.h"
+#include "remesh/remesher.h"
+#include "tests/test_util.h"
+
+namespace srcodec {
+namespace {
+
+using Edge = std::array<int32_t, 2>;
+
+// Whether p lies on one of the cube [-1, 1]^3's twelve edges (two
+// coordinates at +-1).
+bool on_cube_edge(const Eigen::Vector3d& p, double tolerance = 1e-9) {
+  return (p.cwiseAbs().array() > 1.0 - tolerance).count() >= 2;
+}
+
+bool is_cube_corner(const Eigen::Vector3d& p) { return (p.cwiseAbs().array() > 1.0 - 1e-9).count() == 3; }
+
+// The cube's creases as the remesher gives them to the base mesh.
+BaseMeshCreases cube_creases(const TriangleMesh& cube) {
+  const Features f = detect_features(cube);
+  BaseMeshCreases c;
+  for (const FeatureEdge& e : f.edges) c.edges.push_back({e.a, e.b});
+  c.fixed = f.corners;
+  return c;
+}
+
+TEST(Creases, LevelCreasesAreTheHalvesOfSplitCreaseEdges) {
+  // Two triangles sharing the crease 0-1; only the first is split at level 1.
+  auto h = TriangleHierarchy::create(4, {{0, 1, 2}, {1, 0, 3}});
+  ASSERT_TRUE(h.ok());
+  const std::vector<Edge> base{{0, 1}};
+  EXPECT_EQ(crease_edges_up_to(*h, base, 0), base);
+  std::vector<int32_t> made;
+  h->split(0, &made);  // the first triangle; closure bisects the second
+  int32_t middle = -1;
+  for (int32_t v : made)
+    if (h->parent_edge(v) == std::array<int32_t, 2>{0, 1} || h->parent_edge(v) == std::array<int32_t, 2>{1, 0})
+      middle = v;
+  ASSERT_GE(middle, 0);
+  const std::vector<Edge> level1 = crease_edges_up_to(*h, base, 1);
+  EXPECT_EQ(level1, (std::vector<Edge>{{0, middle}, {1, middle}}));
+  const std::vector<uint8_t> degree = crease_degrees(*h, level1);
+  EXPECT_EQ(degree[middle], 2);
+  EXPECT_EQ(degree[0], 1);
+  EXPECT_EQ(degree[2], 0);
+  EXPECT_TRUE(crease_edges_up_to(*h, {}, 1).empty());
+}
+
+TEST(Creases, OversamplingSplitsEachCreaseEdgeAlongItself) {
+  const TriangleMesh cube = test::grid_cube(3);
+  std::vector<Edge> creases = cube_creases(cube).edges;
+  const size_t before = creases.size();
+  ASSERT_EQ(before, 12u * 3);
+  for (OversampleScheme scheme : {OversampleScheme::kLinear, OversampleScheme::kButterfly}) {
+    std::vector<Edge> halves = creases;
+    auto fine = oversample(cube, scheme, 2, &halves);
+    ASSERT_TRUE(fine.ok()) << fine.status().message();
+    EXPECT_EQ(halves.size(), 4 * before);
+    std::set<Edge> edges;
+    for (const auto& t : fine->triangles)
+      for (int c = 0; c < 3; ++c) edges.insert({std::min(t[c], t[(c + 1) % 3]), std::max(t[c], t[(c + 1) % 3])});
+    for (const Edge& e : halves) {
+      EXPECT_TRUE(edges.count(e)) << e[0] << "-" << e[1] << " is no edge";
+      if (scheme == OversampleScheme::kLinear) {
+        EXPECT_TRUE(on_cube_edge(fine->positions[e[0]]) && on_cube_edge(fine->positions[e[1]]));
+      }
+    }
+  }
+  std::vector<Edge> wrong{{0, static_cast<int32_t>(cube.positions.size()) - 1}};
+  EXPECT_FALSE(oversample(cube, OversampleScheme::kLinear, 1, &wrong).ok());
+}
+
+TEST(Creases, BaseEdgesFollowTheCubesEdges) {
+  const TriangleMesh cube = test::grid_cube(12);
+  const BaseMeshCreases creases = cube_creases(cube);
+  ASSERT_EQ(creases.fixed.size(), 8u);
+  LbgOptions lbg;
+  lbg.target_sites = 40;
+  auto cells = lbg_sites(cube, lbg);
+  ASSERT_TRUE(cells.ok());
+  BaseMeshReport report;
+  auto base = build_base_mesh(cube, cells->sites, cells->cell_of, &report, creases);
+  ASSERT_TRUE(base.ok()) << base.status().message();
+  const TriangleMesh& b = base->mesh;
+  // Every corner is a base vertex, every base crease edge runs along one of
+  // the cube's edges (both ends on it, sharing two coordinates at +-1), and
+  // the chains cover the cube's 12 edges: length 24 in all.
+  size_t corners = 0;
+  for (const auto& p : b.positions) corners += is_cube_corner(p);
+  EXPECT_EQ(corners, 8u);
+  double length = 0.0;
+  for (const auto& [x, y] : base->crease_edges) {
+    const Eigen::Vector3d &p = b.positions[x], &q = b.positions[y];
+    ASSERT_TRUE(on_cube_edge(p) && on_cube_edge(q));
+    EXPECT_EQ(((p.cwiseAbs().array() > 1.0 - 1e-9) && (q.cwiseAbs().array() > 1.0 - 1e-9) &&
+               (p.array() * q.array() > 0.0))
+                  .count(),
+              2)
+        << "base crease edge " << x << "-" << y << " cuts across a face";
+    length += (p - q).norm();
+  }
+  EXPECT_NEAR(length, 24.0, 1e-9);
+  EXPECT_GT(report.crease_vertices_kept, 8u);
+  // Every base triangle lies in one face of the cube: flat faces stay flat.
+  for (const auto& t : b.triangles) {
+    const Eigen::Vector3d n = (b.positions[t[1]] - b.positions[t[0]]).cross(b.positions[t[2]] - b.positions[t[0]]);
+    EXPECT_NEAR(n.cwiseAbs().maxCoeff(), n.norm(), 1e-9 * n.norm());
+  }
+  // The input's crease points are placed on base crease edges: one
+  // barycentric is zero.
+  for (const Edge& e : creases.edges)
+    for (int32_t v : e) EXPECT_NEAR(base->param[v].bary.minCoeff(), 0.0, 1e-9) << "vertex " << v;
+}
+
+TEST(Creases, BaseMeshRefusesCreasesItCannotFollow) {
+  const TriangleMesh cube = test::grid_cube(4);
+  LbgOptions lbg;
+  lbg.target_sites = 10;
+  auto cells = lbg_sites(cube, lbg);
+  ASSERT_TRUE(cells.ok());
+  BaseMeshCreases not_an_edge = cube_creases(cube);
+  not_an_edge.edges.push_back({0, static_cast<int32_t>(cube.positions.size()) - 1});
+  auto a = build_base_mesh(cube, cells->sites, cells->cell_of, nullptr, not_an_edge);
+  ASSERT_FALSE(a.ok());
+  EXPECT_NE(a.status().message().find("not an edge"), std::string::npos) << a.status().message();
+  BaseMeshCreases unfixed_corners = cube_creases(cube);
+  unfixed_corners.fixed.clear();
+  auto b = build_base_mesh(cube, cells->sites, cells->cell_of, nullptr, unfixed_corners);
+  ASSERT_FALSE(b.ok());
+  EXPECT_NE(b.status().message().find("not fixed"), std::string::npos) << b.status().message();
+}
+
+TEST(Creases, RemeshKeepsEveryCreaseVertexOnTheCubesEdges) {
+  const TriangleMesh cube = test::grid_cube(32);
+  RemeshOptions o;
+  o.levels = 3;
+  o.base_vertices = 40;
+  o.uniform = true;
+  o.oversample = 0;
+  o.features = true;
+  RemeshReport report;
+  auto srm = remesh(cube, o, &report);
+  ASSERT_TRUE(srm.ok()) << srm.status().message();
+  ASSERT_FALSE(srm->crease_edges.empty());
+  EXPECT_EQ(report.base_crease_edges, srm->crease_edges.size());
+  for (int32_t level = 0; level <= srm->levels; ++level) {
+    const std::vector<Edge> creases = crease_edges_up_to(srm->hierarchy, srm->crease_edges, level);
+    double length = 0.0;
+    for (const auto& [a, b] : creases) {
+      EXPECT_TRUE(on_cube_edge(srm->positions[a]) && on_cube_edge(srm->positions[b]))
+          << "level " << level << " crease edge " << a << "-" << b;
+      length += (srm->positions[a] - srm->positions[b]).norm();
+    }
+    EXPECT_NEAR(length, 24.0, 1e-6) << "level " << level;
+  }
+  // And without features the remesh's edges cut the cube's corners off.
+  o.features = false;
+  auto plain = remesh(cube, o);
+  ASSERT_TRUE(plain.ok());
+  EXPECT_TRUE(plain->crease_edges.empty());
+  size_t corners = 0;
+  for (const auto& p : plain->positions) corners += is_cube_corner(p);
+  EXPECT_LT(corners, 8u);
+}
+
+}  // namespace
+}  // namespace srcodec
