@@ -1,8 +1,10 @@
-// Creases through the remesher (RemeshOptions::features) on a cube, whose
+// Creases through the remesher (RemeshOptions::features) on shapes whose
 // creases are known: the crease edges of each level of a hierarchy
 // (format/semi_regular/creases.h), the oversampling's halves of crease
-// edges, a base mesh whose edges follow the cube's twelve edges, and a whole
-// remesh whose crease vertices lie on them at every level.
+// edges, a base mesh whose edges follow a cube's twelve edges, a whole
+// remesh whose crease vertices lie on them at every level; a cube of 12
+// triangles (all corners), a fold running into the boundary, and a noisy
+// sphere (no creases).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -175,6 +177,66 @@ TEST(Creases, RemeshKeepsEveryCreaseVertexOnTheCubesEdges) {
   size_t corners = 0;
   for (const auto& p : plain->positions) corners += is_cube_corner(p);
   EXPECT_LT(corners, 8u);
+}
+
+TEST(Creases, AMeshOfCornersIsItsOwnBaseWithItsEdgesAsCreases) {
+  RemeshOptions o;
+  o.features = true;
+  o.fit_levels = true;  // 8 vertices: the input is its own base mesh
+  auto srm = remesh(test::unit_cube(), o);
+  ASSERT_TRUE(srm.ok()) << srm.status().message();
+  EXPECT_EQ(srm->levels, 0);
+  EXPECT_EQ(srm->crease_edges.size(), 12u);  // not the six face diagonals
+}
+
+TEST(Creases, CreaseRunningIntoTheBoundaryStaysOnTheFold) {
+  // Two squares folded at 90 degrees along x = 0: the crease ends on the
+  // boundary at both ends.
+  test::GridBuilder g;
+  const int n = 48;
+  g.patch(n, [](double u, double v) { return Eigen::Vector3d(-u, v, 0); });
+  g.patch(n, [](double u, double v) { return Eigen::Vector3d(0, u, v); });
+  RemeshOptions o;
+  o.levels = 2;
+  o.base_vertices = 30;
+  o.uniform = true;
+  o.oversample = 0;
+  o.features = true;
+  auto srm = remesh(g.mesh, o);
+  ASSERT_TRUE(srm.ok()) << srm.status().message();
+  const std::vector<Edge> creases = crease_edges_up_to(srm->hierarchy, srm->crease_edges, srm->levels);
+  ASSERT_FALSE(creases.empty());
+  double length = 0.0;
+  for (const auto& [a, b] : creases) {
+    for (int32_t v : {a, b}) {
+      EXPECT_NEAR(srm->positions[v].x(), 0.0, 1e-12);
+      EXPECT_NEAR(srm->positions[v].z(), 0.0, 1e-12);
+    }
+    length += (srm->positions[a] - srm->positions[b]).norm();
+  }
+  EXPECT_NEAR(length, 1.0, 1e-9);
+}
+
+TEST(Creases, NoisySphereHasNoCreasesToKeep) {
+  // Noise of a tenth of an edge everywhere: no crease, the same remesh as
+  // without features.
+  TriangleMesh sphere = test::icosphere(4, 1.0);
+  uint64_t state = 7;
+  for (auto& p : sphere.positions) {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    p *= 1.0 + 0.012 * (static_cast<double>(state >> 11) / 9007199254740992.0 - 0.5);
+  }
+  RemeshOptions o;
+  o.levels = 2;
+  o.base_vertices = 40;
+  o.uniform = true;
+  o.oversample = 0;
+  auto plain = remesh(sphere, o);
+  o.features = true;
+  auto with = remesh(sphere, o);
+  ASSERT_TRUE(plain.ok() && with.ok());
+  EXPECT_TRUE(with->crease_edges.empty());
+  EXPECT_EQ(with->positions, plain->positions);
 }
 
 }  // namespace
