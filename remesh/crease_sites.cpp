@@ -6,8 +6,9 @@
 // it, so the curve's 1D Voronoi cells relax and the chain stays in order
 // (MAPS keeps feature vertices on their curves in the same way: Lee et al.
 // 1998, §3.4).
-#include "remesh/features.h"
 #include "format/semi_regular/creases.h"
+#include "format/union_find.h"
+#include "remesh/features.h"
 #include "remesh/refiner.h"
 
 namespace srcodec {
@@ -43,6 +44,24 @@ void Refiner::build_curves() {
   }
   std::sort(curves_at_fixed_.begin(), curves_at_fixed_.end());
   curves_at_fixed_.erase(std::unique(curves_at_fixed_.begin(), curves_at_fixed_.end()), curves_at_fixed_.end());
+
+  // The base faces' patches: faces joined across every base edge but the creases.
+  const auto& faces = base_.mesh.triangles;
+  std::vector<std::pair<uint64_t, int32_t>> sides;  // (edge, face) for every face's three edges
+  sides.reserve(3 * faces.size());
+  for (size_t f = 0; f < faces.size(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const int32_t a = faces[f][c], b = faces[f][(c + 1) % 3];
+      const std::array<int32_t, 2> edge{std::min(a, b), std::max(a, b)};
+      if (std::binary_search(base_.crease_edges.begin(), base_.crease_edges.end(), edge)) continue;
+      sides.push_back({(static_cast<uint64_t>(edge[0]) << 32) | static_cast<uint32_t>(edge[1]), static_cast<int32_t>(f)});
+    }
+  std::sort(sides.begin(), sides.end());
+  UnionFind patches(faces.size());
+  for (size_t k = 1; k < sides.size(); ++k)
+    if (sides[k].first == sides[k - 1].first) patches.unite(sides[k].second, sides[k - 1].second);
+  face_patch_.resize(faces.size());
+  for (size_t f = 0; f < faces.size(); ++f) face_patch_[f] = static_cast<int32_t>(patches.find(f));
 }
 
 void Refiner::build_level_creases(int32_t level) {
@@ -50,6 +69,11 @@ void Refiner::build_level_creases(int32_t level) {
   const size_t n = static_cast<size_t>(h_.vertex_count());
   site_crease_degree_.assign(n, 0);
   site_crease_ends_.assign(n, {-1, -1});
+  site_patch_.assign(n, -1);
+  for (size_t s = 0; s < n; ++s) {
+    const int32_t face = h_.nominal_param(static_cast<int32_t>(s)).face;
+    if (face >= 0) site_patch_[s] = face_patch_[face];
+  }
   for (const auto& [a, b] : crease_edges_up_to(h_, base_.crease_edges, level))
     for (const auto& [v, other] : {std::pair{a, b}, std::pair{b, a}}) {
       if (site_crease_degree_[v] < 2) site_crease_ends_[v][site_crease_degree_[v]] = other;
@@ -98,7 +122,7 @@ bool Refiner::crease_allowed(int32_t site, int32_t i) const {
   const int32_t own = anchor_[site];
   if (own >= 0 && point_crease_[own] == 2) return i == own;
   const uint8_t degree = site_crease_degree_[site];
-  if (degree == 0) return point_crease_[i] == 0;
+  if (degree == 0) return point_crease_[i] == 0 && face_patch_[param_[i].face] == site_patch_[site];
   if (degree != 2) return i == own;
   const auto [a, b] = site_crease_ends_[site];
   return between_on_curve(a, b, own, i);

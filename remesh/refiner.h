@@ -553,6 +553,11 @@ class Refiner {
   std::vector<double> curve_pos_;
   std::vector<std::vector<int32_t>> curve_walk_;
   std::vector<std::pair<int32_t, int32_t>> curves_at_fixed_;
+  // Per base face: its patch, the faces reached without crossing a base
+  // crease edge. A site off the creases keeps to its own patch: across a
+  // crease its triangles would straddle the fold.
+  std::vector<int32_t> face_patch_;
+  std::vector<int32_t> site_patch_;  // per site of the current level: its patch (by its dyadic point)
   // Per site, in the current level's mesh: its crease edges, saturated at
   // 255, and the other ends of its first two.
   std::vector<uint8_t> site_crease_degree_;

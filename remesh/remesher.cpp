@@ -6,6 +6,7 @@
 #include <functional>
 #include <memory>
 
+#include "remesh/base_creases.h"
 #include "remesh/base_mesh.h"
 #include "remesh/boundary_tips.h"
 #include "remesh/components.h"
@@ -122,33 +123,6 @@ size_t default_base_vertices(size_t input_vertices, size_t components, int level
 }
 
 namespace {
-
-// The input's creases as the base mesh keeps them (RemeshOptions::features):
-// the crease edges, and fixed their corners and ends and any vertex that is
-// not on exactly two crease edges away from the boundary (where creases
-// branch, stop, or run into the boundary).
-BaseMeshCreases creases_to_keep(const TriangleMesh& part) {
-  const Features features = detect_features(part);
-  BaseMeshCreases out;
-  std::vector<int32_t> degree(part.positions.size(), 0);
-  std::vector<char> on_boundary(part.positions.size(), 0);
-  for (const FeatureEdge& e : features.edges) {
-    if (e.kind == FeatureKind::kBoundary) {
-      on_boundary[e.a] = on_boundary[e.b] = 1;
-      continue;
-    }
-    out.edges.push_back({e.a, e.b});
-    ++degree[e.a];
-    ++degree[e.b];
-  }
-  out.fixed = features.corners;
-  out.fixed.insert(out.fixed.end(), features.ends.begin(), features.ends.end());
-  for (size_t v = 0; v < degree.size(); ++v)
-    if (degree[v] > 0 && (degree[v] != 2 || on_boundary[v])) out.fixed.push_back(static_cast<int32_t>(v));
-  std::sort(out.fixed.begin(), out.fixed.end());
-  out.fixed.erase(std::unique(out.fixed.begin(), out.fixed.end()), out.fixed.end());
-  return out;
-}
 
 // Checks what remesh() is asked before any work.
 Status check_options(const RemeshOptions& options) {
@@ -293,7 +267,11 @@ Status Remesher::split_and_oversample() {
   const auto start = std::chrono::steady_clock::now();
   creases_.assign(parts_.size(), BaseMeshCreases{});
   for (size_t c = 0; c < parts_.size(); ++c) {
-    if (options_.features) creases_[c] = creases_to_keep(parts_[c].mesh);
+    if (options_.features) {
+      BaseCreaseOptions keep;
+      keep.base_vertices = share_[c];
+      creases_[c] = base_creases(parts_[c].mesh, detect_features(parts_[c].mesh), keep);
+    }
     SRCODEC_ASSIGN_OR_RETURN(parts_[c].mesh,
                              oversample(parts_[c].mesh, options_.scheme, steps[c], &creases_[c].edges));
     rep_.component_oversample_steps.push_back(steps[c]);

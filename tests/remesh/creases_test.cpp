@@ -11,6 +11,7 @@
 #include <set>
 
 #include "format/semi_regular/creases.h"
+#include "remesh/base_creases.h"
 #include "remesh/base_mesh.h"
 #include "remesh/features.h"
 #include "remesh/lbg_sites.h"
@@ -60,6 +61,24 @@ TEST(Creases, LevelCreasesAreTheHalvesOfSplitCreaseEdges) {
   EXPECT_EQ(degree[0], 1);
   EXPECT_EQ(degree[2], 0);
   EXPECT_TRUE(crease_edges_up_to(*h, {}, 1).empty());
+}
+
+TEST(Creases, BaseFollowsCreasesNoShorterThanItsEdges) {
+  const TriangleMesh cube = test::grid_cube(6);
+  const Features features = detect_features(cube);
+  // Area 24: base edges of 40 vertices are 0.83 long, of 4 vertices 2.63,
+  // longer than the cube's edges (2).
+  EXPECT_NEAR(base_edge_length(24.0, 4), std::sqrt(12.0 / std::sqrt(3.0)), 1e-12);
+  BaseCreaseOptions fine;
+  fine.base_vertices = 40;
+  const BaseMeshCreases kept = base_creases(cube, features, fine);
+  EXPECT_EQ(kept.edges.size(), 12u * 6);
+  EXPECT_EQ(kept.fixed.size(), 8u);
+  BaseCreaseOptions coarse;
+  coarse.base_vertices = 4;
+  const BaseMeshCreases dropped = base_creases(cube, features, coarse);
+  EXPECT_TRUE(dropped.edges.empty());
+  EXPECT_TRUE(dropped.fixed.empty());
 }
 
 TEST(Creases, OversamplingSplitsEachCreaseEdgeAlongItself) {
