@@ -29,7 +29,8 @@ struct SrmEncodeOptions {
   int base_bits = 10;
   // The symbols of this many lowest bit planes are written as raw bits, not
   // arithmetic-coded (.srm version 2 or 3, codec/bitplane_model.h): they are close to
-  // even there, and raw bits decode several times faster. 0 writes version 1.
+  // even there, and raw bits decode several times faster. 0: none (version 1
+  // when the mesh has no creases).
   // (What two planes cost and save: docs/codec_design.md.)
   int raw_planes = 2;
 };
