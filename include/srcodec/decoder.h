@@ -103,7 +103,8 @@ StatusOr<FileInfo> inspect(const uint8_t* data, size_t size);
 // coefficients' bytes as fit (what `srcodec encode --bytes N` writes). It
 // decodes like the prefix of the same length, and, unlike a plain prefix,
 // its checksums are whole. An error when `bytes` cannot hold the header,
-// base mesh and refinement flags (the message says how many that takes).
+// base mesh, creases and refinement flags (the message says how many that
+// takes).
 StatusOr<std::vector<uint8_t>> truncate(const uint8_t* data, size_t size, uint64_t bytes);
 
 }  // namespace srcodec
