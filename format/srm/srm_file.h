@@ -2,8 +2,9 @@
 // header with counts, bounding box, quantization and the table of every
 // chunk's length and checksum, then the base mesh chunk, the crease chunk
 // (version 3), one refinement-flag chunk per level, and the coefficient
-// segments in embedded order (bit-plane major, level minor). Any prefix that holds the whole header parses: chunks past the
-// cut are missing or partial, and the decoder makes the best mesh of them.
+// segments in embedded order (bit-plane major, level minor). Any prefix that
+// holds the whole header parses: chunks past the cut are missing or partial,
+// and the decoder makes the best mesh of them.
 #pragma once
 
 #include <Eigen/Core>

@@ -401,7 +401,8 @@ TEST(SrmCodecCreases, TheDecoderGetsTheEncodersCreasesInTheFilesNumbering) {
     EXPECT_EQ(back, c.srm.crease_edges) << (adaptive ? "adaptive" : "uniform");
     EXPECT_GT(moved, 0);  // the base mesh coder renumbers: a test of the renumbering, not of luck
     // Every level and the threads see the same creases.
-    for (int level = 0; level <= 3; ++level) EXPECT_EQ(decode_bytes(e.bytes, 0, level)->crease_edges, whole.crease_edges);
+    for (int level = 0; level <= 3; ++level)
+      EXPECT_EQ(decode_bytes(e.bytes, 0, level)->crease_edges, whole.crease_edges) << level;
   }
 }
 
