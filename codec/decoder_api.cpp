@@ -6,7 +6,10 @@
 #include <algorithm>
 #include <string>
 
+#include "codec/base_mesh_coder.h"
+#include "codec/crease_coder.h"
 #include "codec/srm_codec.h"
+#include "codec/srm_layout.h"
 #include "format/mesh_convert.h"
 #include "format/srm/srm_file.h"
 
@@ -31,6 +34,23 @@ Status check_options(const DecodeOptions& o) {
     return invalid_argument("max_vertices " + std::to_string(o.max_vertices) + ": use 1.." +
                             std::to_string(kMaxVerticesLimit));
   return ok_status();
+}
+
+// How many base edges the crease chunk marks: decoding it needs the base
+// mesh's triangles. -1 when the two are not both whole or do not decode
+// (inspect reports, decode is the one to say what is wrong).
+int64_t crease_count(const SrmFile& f) {
+  const SrmHeader& h = f.header;
+  if (!h.has_creases) return 0;
+  if (!f.base.complete() || !f.creases.complete()) return -1;
+  if (!verify_chunk(f.base, false, "").ok() || !verify_chunk(f.creases, false, "").ok()) return -1;
+  const StatusOr<DecodedBaseMesh> base =
+      decode_base_mesh(f.base.bytes.data(), f.base.bytes.size(), grid_of(h), h.base_vertices, h.base_triangles);
+  if (!base.ok()) return -1;
+  const StatusOr<std::vector<std::array<int32_t, 2>>> creases =
+      decode_creases(base->triangles, static_cast<int32_t>(base->positions.size()), f.creases.bytes.data(),
+                     f.creases.bytes.size());
+  return creases.ok() ? static_cast<int64_t>(creases->size()) : -1;
 }
 
 }  // namespace
@@ -58,6 +78,10 @@ StatusOr<Decoded> decode(const uint8_t* data, size_t size, const DecodeOptions& 
   out.bytes_used = decoded.bytes_used;
   out.last_complete_plane = decoded.last_plane;
   out.base_cut = decoded.base_cut;
+  out.creases_cut = decoded.creases_cut;
+  out.crease_edges.reserve(2 * decoded.crease_edges.size());
+  for (const auto& e : decoded.crease_edges)
+    out.crease_edges.insert(out.crease_edges.end(), {static_cast<uint32_t>(e[0]), static_cast<uint32_t>(e[1])});
   return out;
 }
 
@@ -83,6 +107,8 @@ StatusOr<FileInfo> inspect(const uint8_t* data, size_t size) {
   info.base_vertices = h.base_vertices;
   info.base_triangles = h.base_triangles;
   info.base_bytes = h.base.length;
+  info.crease_bytes = h.has_creases ? h.creases.length : 0;
+  info.crease_edges = crease_count(f);
   info.base_bits = h.base_bits;
   info.levels = h.levels;
   info.quantizer_step = h.quant_step;

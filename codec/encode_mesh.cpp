@@ -91,6 +91,7 @@ StatusOr<MeshEncodeResult> encode_mesh(const TriangleMesh& input, const MeshEnco
   SRCODEC_ASSIGN_OR_RETURN(EncodedSrm encoded, encode_srm(semi_regular, input, options.coding));
   out.seconds_coding = seconds_since(coding_start);
   out.header = encoded.header;
+  out.crease_edges = semi_regular.crease_edges.size();
   out.full_stream_bytes = encoded.bytes.size();
   step_done("code");
 

@@ -35,8 +35,9 @@ struct MeshEncodeOptions {
 struct MeshEncodeResult {
   std::vector<uint8_t> file;
   SrmHeader header;                // of the whole stream (levels, base vertices)
+  size_t crease_edges = 0;         // base edges the remesh marks sharp (the file's crease chunk)
   uint64_t full_stream_bytes = 0;
-  uint64_t minimum_bytes = 0;      // header, base mesh and flags: the smallest cut
+  uint64_t minimum_bytes = 0;      // header, base mesh, creases and flags: the smallest cut
   double psnr = 0;                 // of `file` against the input, with `samples`
   Knee knee;                       // with Rate::Kind::kKnee: where the search stopped
   RemeshReport remesh;

@@ -96,6 +96,7 @@ StatusOr<std::vector<uint8_t>> encode(const Mesh& mesh, const EncodeOptions& opt
   if (report != nullptr) {
     report->levels = result.header.levels;
     report->base_vertices = result.header.base_vertices;
+    report->crease_edges = result.crease_edges;
     report->bytes = result.file.size();
     report->full_stream_bytes = result.full_stream_bytes;
     report->minimum_bytes = result.minimum_bytes;

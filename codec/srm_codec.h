@@ -4,6 +4,7 @@
 // bit-plane coding, in the container of format/srm/srm_file.h.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -27,8 +28,9 @@ struct SrmEncodeOptions {
   // embedded stream refines them further (the base residual, level f = 0).
   int base_bits = 10;
   // The symbols of this many lowest bit planes are written as raw bits, not
-  // arithmetic-coded (.srm version 2, codec/bitplane_model.h): they are close to
-  // even there, and raw bits decode several times faster. 0 writes version 1.
+  // arithmetic-coded (.srm version 2 or 3, codec/bitplane_model.h): they are close to
+  // even there, and raw bits decode several times faster. 0: none (version 1
+  // when the mesh has no creases).
   // (What two planes cost and save: docs/codec_design.md.)
   int raw_planes = 2;
 };
@@ -64,11 +66,21 @@ struct DecodedSrm {
   // The file ends inside its base mesh: `mesh` holds the base triangles
   // decoded before the cut (maybe none) and level is 0.
   bool base_cut = false;
+  // The base edges along which the surface is sharp, (a, b) with a < b,
+  // sorted, in base vertex ids (which are the ids of `mesh`'s first
+  // base_vertices vertices at every level): SemiRegularMesh::crease_edges
+  // renumbered as the base mesh coder numbers vertices. Empty in a file
+  // without creases (versions 1 and 2).
+  std::vector<std::array<int32_t, 2>> crease_edges;
+  // The file ends inside its crease chunk: `mesh` is the whole base mesh at
+  // level 0 (no level above can be decoded without the creases) and
+  // crease_edges is empty.
+  bool creases_cut = false;
 };
 
 // Decodes what `file` holds: a prefix decodes to the best mesh its bytes
-// allow (cut inside the base mesh: the base triangles before the cut); a
-// failed checksum is an error.
+// allow (cut inside the base mesh: the base triangles before the cut; inside
+// the creases: the base mesh); a failed checksum is an error.
 StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const SrmDecodeOptions& options = {});
 
 }  // namespace srcodec

@@ -11,6 +11,7 @@
 
 #include "codec/base_mesh_coder.h"
 #include "codec/bitplane.h"
+#include "codec/crease_coder.h"
 #include "codec/flags_coder.h"
 #include "codec/srm_codec.h"
 #include "codec/srm_layout.h"
@@ -68,6 +69,16 @@ StatusOr<DecodedBaseMesh> decode_whole_base(const SrmFile& file) {
   return base;
 }
 
+// The whole crease chunk of the base mesh, checked against its checksum.
+StatusOr<std::vector<std::array<int32_t, 2>>> decode_whole_creases(const SrmFile& file, const DecodedBaseMesh& base) {
+  SRCODEC_RETURN_IF_ERROR(verify_chunk(file.creases, false, "the creases"));
+  StatusOr<std::vector<std::array<int32_t, 2>>> creases =
+      decode_creases(base.triangles, static_cast<int32_t>(base.positions.size()), file.creases.bytes.data(),
+                     file.creases.bytes.size());
+  if (!creases.ok()) return creases.status().with_context("creases at byte " + std::to_string(file.creases.offset));
+  return creases;
+}
+
 // Replays the flags up to `level`; returns the level reached (lower when the
 // file was cut inside a flag chunk).
 StatusOr<int> decode_hierarchy(const SrmFile& file, int level, TriangleHierarchy& h, uint64_t max_vertices) {
@@ -106,9 +117,11 @@ StatusOr<int> replay_refinement(const SrmFile& file, int level, uint64_t total, 
   return decode_hierarchy(file, level, hier, options.max_vertices);
 }
 
-// Where the header, the base mesh and the flags of levels below `level` end.
+// Where the header, the base mesh, the creases (when whole) and the flags of
+// levels below `level` end.
 uint64_t bytes_through_flags(const SrmFile& file, int level) {
   uint64_t end = file.base.offset + file.base.declared;
+  if (file.creases.complete()) end = file.creases.offset + file.creases.declared;
   for (int j = 0; j < level; ++j) end = file.flags[j].offset + file.flags[j].declared;
   return end;
 }
@@ -140,9 +153,10 @@ StatusOr<std::vector<BitplaneSegmentView>> segment_views(const SrmFile& file, in
 // them first: the plan's after the plan, or the caller's.
 class PlanJob {
  public:
-  PlanJob(const TriangleHierarchy& hier, int level, bool threads) : hier_(hier), level_(level) {
+  PlanJob(const TriangleHierarchy& hier, int level, const std::vector<std::array<int32_t, 2>>& creases, bool threads)
+      : hier_(hier), level_(level), creases_(creases) {
     job_ = std::async(threads ? std::launch::async : std::launch::deferred, [this] {
-      StatusOr<LiftingPlan> plan = LiftingPlan::build(hier_, level_);
+      StatusOr<LiftingPlan> plan = LiftingPlan::build(hier_, level_, creases_);
       if (!claimed_.exchange(true)) triangles_ = hier_.level_triangles(level_);
       return plan;
     });
@@ -161,6 +175,7 @@ class PlanJob {
  private:
   const TriangleHierarchy& hier_;
   const int level_;
+  const std::vector<std::array<int32_t, 2>>& creases_;
   std::atomic<bool> claimed_{false};
   std::vector<std::array<int32_t, 3>> triangles_;
   std::future<StatusOr<LiftingPlan>> job_;
@@ -255,6 +270,14 @@ StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const SrmDecodeOptions& opt
   SRCODEC_ASSIGN_OR_RETURN(const uint64_t total, vertices_up_to(h, level, options.max_vertices));
   if (!file.base.complete()) return decode_cut_base(file);
   SRCODEC_ASSIGN_OR_RETURN(const DecodedBaseMesh base, decode_whole_base(file));
+  // Every level above the base follows the creases: without all of them,
+  // the base mesh is what the bytes give (as with a cut base mesh).
+  std::vector<std::array<int32_t, 2>> creases;
+  const bool creases_cut = h.has_creases && !file.creases.complete();
+  if (creases_cut) level = 0;
+  if (h.has_creases && !creases_cut) {
+    SRCODEC_ASSIGN_OR_RETURN(creases, decode_whole_creases(file, base));
+  }
   StatusOr<TriangleHierarchy> created =
       TriangleHierarchy::create(static_cast<int32_t>(h.base_vertices), base.triangles);
   if (!created.ok()) return created.status().with_context("the base mesh is not valid");
@@ -265,7 +288,8 @@ StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const SrmDecodeOptions& opt
   out.level = level;
   out.base_vertices = h.base_vertices;
   out.bytes_used = bytes_through_flags(file, level);
-  PlanJob plan(hier, level, options.threads);
+  out.creases_cut = creases_cut;
+  PlanJob plan(hier, level, creases, options.threads);
   const ForestLayout layout = build_forest(hier, level);
   SRCODEC_ASSIGN_OR_RETURN(const std::vector<BitplaneSegmentView> views, segment_views(file, level, &out.bytes_used));
   Reconstruction reconstruction(hier, layout, h, base, level, plan);
@@ -281,6 +305,7 @@ StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const SrmDecodeOptions& opt
   // Every vertex of the replayed hierarchy (levels <= `level`) is a corner
   // of some triangle of the level mesh: the mesh is already compact.
   out.mesh.triangles = plan.take_triangles();
+  out.crease_edges = std::move(creases);
   return out;
 }
 

@@ -2,9 +2,12 @@
 // quantize and code a semi-regular mesh.
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <unordered_set>
 
 #include "codec/base_mesh_coder.h"
 #include "codec/bitplane.h"
+#include "codec/crease_coder.h"
 #include "codec/flags_coder.h"
 #include "codec/srm_codec.h"
 #include "codec/srm_layout.h"
@@ -20,6 +23,46 @@ double as_float(double v) { return static_cast<double>(static_cast<float>(v)); }
 
 double component(const Eigen::Vector3d& v, int c) { return v[c]; }
 
+std::string edge_text(const std::array<int32_t, 2>& e) {
+  return "(" + std::to_string(e[0]) + ", " + std::to_string(e[1]) + ")";
+}
+
+// The creases as SemiRegularMesh::crease_edges promises them: base edges,
+// a < b, sorted, no repeats (the wavelet and the crease coder rely on it).
+Status check_creases(const SemiRegularMesh& mesh) {
+  std::unordered_set<uint64_t> edges;  // lookups only
+  const auto key = [](int32_t a, int32_t b) {
+    return (static_cast<uint64_t>(static_cast<uint32_t>(std::min(a, b))) << 32) |
+           static_cast<uint32_t>(std::max(a, b));
+  };
+  for (const auto& t : mesh.base.triangles)
+    for (int k = 0; k < 3; ++k) edges.insert(key(t[k], t[(k + 1) % 3]));
+  for (size_t i = 0; i < mesh.crease_edges.size(); ++i) {
+    const std::array<int32_t, 2>& e = mesh.crease_edges[i];
+    if (e[0] >= e[1]) return invalid_argument("encode: crease edge " + edge_text(e) + " is not written with a < b");
+    if (i > 0 && !(mesh.crease_edges[i - 1] < e))
+      return invalid_argument("encode: crease edges are not sorted without repeats at " + edge_text(e));
+    if (e[0] < 0 || !edges.count(key(e[0], e[1])))
+      return invalid_argument("encode: crease edge " + edge_text(e) + " is not an edge of the base mesh");
+  }
+  return ok_status();
+}
+
+// The creases in the base mesh coder's vertex ids (the file's and the
+// decoder's), sorted again.
+std::vector<std::array<int32_t, 2>> renumbered(const std::vector<std::array<int32_t, 2>>& creases,
+                                               const std::vector<int32_t>& new_to_old_vertex) {
+  std::vector<int32_t> old_to_new(new_to_old_vertex.size(), -1);
+  for (size_t v = 0; v < new_to_old_vertex.size(); ++v) old_to_new[new_to_old_vertex[v]] = static_cast<int32_t>(v);
+  std::vector<std::array<int32_t, 2>> out;
+  for (const auto& e : creases) {
+    const int32_t a = old_to_new[e[0]], b = old_to_new[e[1]];
+    out.push_back({std::min(a, b), std::max(a, b)});
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 }  // namespace
 
 StatusOr<EncodedSrm> encode_srm(const SemiRegularMesh& mesh, const TriangleMesh& input, const SrmEncodeOptions& options) {
@@ -34,6 +77,7 @@ StatusOr<EncodedSrm> encode_srm(const SemiRegularMesh& mesh, const TriangleMesh&
   if (levels < 0 || levels > kSrmMaxLevels)
     return invalid_argument("encode: " + std::to_string(levels) + " levels; the format holds 0.." +
                             std::to_string(kSrmMaxLevels));
+  SRCODEC_RETURN_IF_ERROR(check_creases(mesh));
   SrmHeader h;
   h.input_vertices = input.positions.size();
   h.input_triangles = input.triangles.size();
@@ -57,7 +101,7 @@ StatusOr<EncodedSrm> encode_srm(const SemiRegularMesh& mesh, const TriangleMesh&
   // The base mesh carries the level-0 approximation (base vertices after the
   // update steps), not the base vertices' own positions: the transform on the
   // remesher's numbering gives it before the replay renumbers everything.
-  StatusOr<LiftingPlan> original_plan = LiftingPlan::build(mesh.hierarchy, levels);
+  StatusOr<LiftingPlan> original_plan = LiftingPlan::build(mesh.hierarchy, levels, mesh.crease_edges);
   if (!original_plan.ok()) return original_plan.status().with_context("encode: wavelet plan");
   const std::vector<Eigen::Vector3d> approximation = forward_lifting(original_plan.value(), mesh.positions).base;
   StatusOr<BaseMeshCode> base = encode_base_mesh(approximation, mesh.base.triangles, grid_of(h));
@@ -66,6 +110,15 @@ StatusOr<EncodedSrm> encode_srm(const SemiRegularMesh& mesh, const TriangleMesh&
                                                          base->new_to_old_vertex, base->new_to_old_triangle);
   if (!replay.ok()) return replay.status().with_context("encode");
   const TriangleHierarchy& hier = replay->hierarchy;
+  // Without creases there is no crease chunk: the file is version 1 or 2.
+  const std::vector<std::array<int32_t, 2>> creases = renumbered(mesh.crease_edges, base->new_to_old_vertex);
+  std::vector<uint8_t> crease_bytes;
+  if (!creases.empty()) {
+    StatusOr<std::vector<uint8_t>> coded = encode_creases(base->triangles, creases);
+    if (!coded.ok()) return coded.status().with_context("encode");
+    crease_bytes = std::move(coded.value());
+  }
+  h.has_creases = !creases.empty();
   h.base_vertices = nbase;
   h.base_triangles = base->triangles.size();
   h.level_vertices.assign(levels + 1, 0);
@@ -73,7 +126,7 @@ StatusOr<EncodedSrm> encode_srm(const SemiRegularMesh& mesh, const TriangleMesh&
 
   std::vector<Eigen::Vector3d> positions(hier.vertex_count());
   for (int32_t v = 0; v < hier.vertex_count(); ++v) positions[v] = mesh.positions[replay->to_original_vertex[v]];
-  StatusOr<LiftingPlan> plan = LiftingPlan::build(hier, levels);
+  StatusOr<LiftingPlan> plan = LiftingPlan::build(hier, levels, creases);
   if (!plan.ok()) return plan.status().with_context("encode: wavelet plan");
   const WaveletCoefficients coeffs = forward_lifting(plan.value(), positions);
 
@@ -98,7 +151,7 @@ StatusOr<EncodedSrm> encode_srm(const SemiRegularMesh& mesh, const TriangleMesh&
     segments[h.segment_index(s.plane, s.level - 1)] = s.bytes;
   }
   EncodedSrm out;
-  out.bytes = write_srm(h, base->bytes, replay->flags, segments);
+  out.bytes = write_srm(h, base->bytes, replay->flags, segments, crease_bytes);
   StatusOr<SrmFile> parsed = parse_srm(out.bytes.data(), out.bytes.size());
   if (!parsed.ok()) return parsed.status().with_context("encode: re-reading its own file");
   out.header = parsed->header;

@@ -3,9 +3,10 @@
 
 Each seed starts with the option bytes its fuzzer reads (see the comments at
 the top of srm_decode_fuzzer.cpp and mesh_read_fuzzer.cpp), then a valid file:
-the golden .srm for the decoder; for the reader a piece of data/spot.obj (the
-whole file is 330 KB, too big to mutate quickly), the golden level-0 OBJ and
-tiny OFF, PLY and STL files made here. Every seed is well under 200 KB.
+the golden .srm files and the version-3 sample (creases) for the decoder; for
+the reader a piece of data/spot.obj (the whole file is 330 KB, too big to
+mutate quickly), the golden level-0 OBJ and tiny OFF, PLY and STL files made
+here. Every seed is well under 200 KB.
 
 usage: make_seeds.py SOURCE_DIR OUT_DIR
 """
@@ -122,6 +123,34 @@ def stl_binary():
     return data
 
 
+def varint(data, pos):
+    value, shift = 0, 0
+    while True:
+        byte = data[pos]
+        value |= (byte & 0x7F) << shift
+        pos, shift = pos + 1, shift + 7
+        if not byte & 0x80:
+            return value, pos
+
+
+def crease_chunk(srm):
+    """(offset, length) of a version-3 file's crease chunk: the header's
+    fields up to the crease entry (format/srm/README.md), skipped."""
+    assert srm[4] == 3
+    body = struct.unpack_from("<I", srm, 6)[0]
+    pos = 10
+    for _ in range(2):
+        pos = varint(srm, pos)[1]  # input vertices, triangles
+    levels = srm[pos + 24]
+    pos += 24 + 2 + 4  # bounding box, levels, base bits, grid step
+    for _ in range(2 + levels + 1):
+        pos = varint(srm, pos)[1]  # base vertices, triangles, level vertices
+    pos += 4 + 4 + 1 + 1  # quantizer step, tangential factor, top plane + 1, raw planes
+    base, pos = varint(srm, pos)
+    creases, pos = varint(srm, pos + 4)
+    return 10 + body + 4 + base, creases
+
+
 def main():
     source, out = sys.argv[1], sys.argv[2]
     srm_dir = os.path.join(out, "srm_decode")
@@ -129,15 +158,20 @@ def main():
     os.makedirs(srm_dir, exist_ok=True)
     os.makedirs(mesh_dir, exist_ok=True)
 
-    # The golden files of versions 1 and 2 (raw planes).
-    for version in (1, 2):
-        with open(os.path.join(source, "tests", "data", "golden_v%d.srm" % version), "rb") as f:
+    # The golden files of versions 1 and 2 (raw planes), and a file of version
+    # 3 (creases).
+    for name in ("golden_v1", "golden_v2", "creases_v3"):
+        with open(os.path.join(source, "tests", "data", name + ".srm"), "rb") as f:
             golden = f.read()
         # (level byte, prefix byte): whole file at the finest level; level 0, then
         # inspect and truncate; level 2 from the first half, cut and by max_bytes.
-        for name, level, prefix in [("whole", 0, 0), ("level0_inspect_truncate", 0x80 | 1, 0),
+        for seed, level, prefix in [("whole", 0, 0), ("level0_inspect_truncate", 0x80 | 1, 0),
                                     ("level2_half_cut", 3, 64), ("level2_half_max_bytes", 3, 0x80 | 64)]:
-            write(os.path.join(srm_dir, "golden_v%d_" % version + name), bytes([level, prefix]) + golden)
+            write(os.path.join(srm_dir, name + "_" + seed), bytes([level, prefix]) + golden)
+    # Version 3 cut inside its crease chunk, with inspect and truncate.
+    with open(os.path.join(source, "tests", "data", "creases_v3.srm"), "rb") as f:
+        v3 = f.read()
+    write(os.path.join(srm_dir, "creases_v3_cut_in_creases"), bytes([0x80, 0]) + v3[:crease_chunk(v3)[0] + 1])
 
     with open(os.path.join(source, "tests", "data", "golden_v1_l0.obj"), "rb") as f:
         golden_obj = f.read()

@@ -50,6 +50,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       if (v >= n) __builtin_trap();
     }
     if (decoded->bytes_used > present) __builtin_trap();
+    // Crease edges name two distinct decoded vertices, the smaller first.
+    for (size_t k = 0; k + 1 < decoded->crease_edges.size(); k += 2) {
+      if (decoded->crease_edges[k] >= decoded->crease_edges[k + 1] || decoded->crease_edges[k + 1] >= n)
+        __builtin_trap();
+    }
+    if (decoded->crease_edges.size() % 2 != 0) __builtin_trap();
   }
   if (level_byte & 0x80) {
     (void)srcodec::inspect(data, present);

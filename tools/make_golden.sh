@@ -2,14 +2,23 @@
 # Regenerates the golden .srm file of one format version and its decoded
 # meshes, which tests/codec/golden_test.cpp pins. Run only when a new format
 # version comes (it gets new golden files; older versions' stay as they are):
-#   tools/make_golden.sh VERSION    (1 or 2; default 2)
+#   tools/make_golden.sh VERSION    (1, 2 or 3; default 2)
 # Version 1: no raw planes, cut at 2500 bytes (inside the coded planes).
 # Version 2: the default raw planes, cut at 5400 bytes: inside plane 0, so
 # that raw segments of every level are decoded and the last one is cut.
+# Version 3 (creases): tests/data/creases_v3.srm, which the codec's test
+# writes from a sphere built in code with creases on a third of its base
+# edges (tests/codec/srm_codec_test.cpp); no meshes are pinned, since they
+# follow the wavelet's crease rules.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bin=${SRCODEC:-build/tools/srcodec}
 version="${1:-2}"
+if [[ "$version" == 3 ]]; then
+  SRCODEC_WRITE_SAMPLE=1 "$(dirname "$bin")/../tests/srm_codec_test" \
+    --gtest_filter=SrmCodecCreases.TheSampleFileHoldsThisEncodersCreases
+  exit
+fi
 case "$version" in
   1) rate=(--bytes 2500 --raw-planes 0) ;;
   2) rate=(--bytes 5400) ;;

@@ -32,6 +32,10 @@ void write_body(const SrmHeader& h, ByteWriter& w) {
   if (h.version() >= 2) w.u8(static_cast<uint8_t>(h.raw_planes));
   w.varint(h.base.length);
   w.u32(h.base.crc);
+  if (h.has_creases) {
+    w.varint(h.creases.length);
+    w.u32(h.creases.crc);
+  }
   for (const SrmChunkEntry& e : h.flags) {
     w.varint(e.length);
     w.u32(e.crc);
@@ -94,11 +98,14 @@ Status read_quantization(ByteReader& r, int version, SrmHeader& h) {
   h.top_plane = top - 1;
   h.raw_planes = 0;
   if (version >= 2) {
+    // Version 2 exists for its raw planes; version 3 may have none.
+    const int least = version == 2 ? 1 : 0;
     uint8_t raw = 0;
     if (!r.u8(raw)) return r.error("header", "the header ends early");
-    if (raw < 1 || raw > kSrmMaxPlane + 1)
-      return r.error("header", std::to_string(raw) + " raw planes, not 1.." +
-                                   std::to_string(kSrmMaxPlane + 1) + " (version 2 has at least one)");
+    if (raw < least || raw > kSrmMaxPlane + 1)
+      return r.error("header", std::to_string(raw) + " raw planes, not " + std::to_string(least) + ".." +
+                                   std::to_string(kSrmMaxPlane + 1) +
+                                   (version == 2 ? " (version 2 has at least one)" : ""));
     h.raw_planes = raw;
   }
   return ok_status();
@@ -118,8 +125,10 @@ Status read_entry(ByteReader& r, SrmChunkEntry& e, bool short_crc, const char* w
   return ok_status();
 }
 
-Status read_table(ByteReader& r, SrmHeader& h) {
+Status read_table(ByteReader& r, int version, SrmHeader& h) {
   SRCODEC_RETURN_IF_ERROR(read_entry(r, h.base, false, "the base mesh"));
+  h.has_creases = version >= 3;
+  if (h.has_creases) SRCODEC_RETURN_IF_ERROR(read_entry(r, h.creases, false, "the creases"));
   h.flags.resize(h.levels);
   for (SrmChunkEntry& e : h.flags) SRCODEC_RETURN_IF_ERROR(read_entry(r, e, false, "a flag chunk"));
   uint64_t count = 0;
@@ -165,7 +174,7 @@ StatusOr<uint64_t> parse_header(const uint8_t* data, size_t have, SrmHeader& h) 
   ByteReader r(data + kPreambleSize, body, kPreambleSize);
   SRCODEC_RETURN_IF_ERROR(read_counts_and_geometry(r, h));
   SRCODEC_RETURN_IF_ERROR(read_quantization(r, data[4], h));
-  SRCODEC_RETURN_IF_ERROR(read_table(r, h));
+  SRCODEC_RETURN_IF_ERROR(read_table(r, data[4], h));
   return header_size;
 }
 
@@ -182,6 +191,7 @@ Status lay_out(SrmFile& f, const SrmReadOptions& options,
     offset += e.length;
   };
   place(f.base, h.base);
+  if (h.has_creases) place(f.creases, h.creases);
   f.flags.resize(h.flags.size());
   for (size_t j = 0; j < h.flags.size(); ++j) place(f.flags[j], h.flags[j]);
   f.segments.resize(h.segments.size());
@@ -192,6 +202,8 @@ Status lay_out(SrmFile& f, const SrmReadOptions& options,
                        "(which ends at byte " + std::to_string(f.declared_size) + "): damaged or not written by srcodec");
   const int max_level = options.max_level < 0 ? h.levels : std::min(options.max_level, h.levels);
   SRCODEC_RETURN_IF_ERROR(load(f.base));
+  // Every level needs the creases: the wavelet's rules follow them.
+  if (h.has_creases) SRCODEC_RETURN_IF_ERROR(load(f.creases));
   for (int j = 0; j < max_level; ++j) SRCODEC_RETURN_IF_ERROR(load(f.flags[j]));
   for (size_t s = 0; s < f.segments.size(); ++s)
     if (static_cast<int>(s % (h.levels + 1)) <= max_level) SRCODEC_RETURN_IF_ERROR(load(f.segments[s]));
@@ -207,8 +219,12 @@ uint64_t present(const SrmChunk& c, uint64_t file_size) {
 
 std::vector<uint8_t> write_srm(SrmHeader header, const std::vector<uint8_t>& base,
                                const std::vector<std::vector<uint8_t>>& flags,
-                               const std::vector<std::vector<uint8_t>>& segments) {
+                               const std::vector<std::vector<uint8_t>>& segments,
+                               const std::vector<uint8_t>& creases) {
   header.base = {base.size(), crc32(base.data(), base.size())};
+  header.has_creases = header.has_creases || !creases.empty();
+  header.creases = header.has_creases ? SrmChunkEntry{creases.size(), crc32(creases.data(), creases.size())}
+                                      : SrmChunkEntry{};
   header.flags.clear();
   for (const auto& c : flags) header.flags.push_back({c.size(), crc32(c.data(), c.size())});
   header.segments.clear();
@@ -223,6 +239,7 @@ std::vector<uint8_t> write_srm(SrmHeader header, const std::vector<uint8_t>& bas
   w.bytes(body.data());
   w.u32(crc32(w.data().data(), w.size()));
   w.bytes(base);
+  if (header.has_creases) w.bytes(creases);
   for (const auto& c : flags) w.bytes(c);
   for (const auto& c : segments) w.bytes(c);
   return std::move(w.data());
@@ -281,6 +298,8 @@ StatusOr<std::vector<uint8_t>> truncate_srm(const uint8_t* data, size_t size, ui
   SRCODEC_ASSIGN_OR_RETURN(SrmFile f, parse_srm(data, size));
   std::vector<std::vector<uint8_t>> flags, segments;
   if (!f.base.complete()) return invalid_argument("truncate: the file is already cut inside its base mesh");
+  if (f.header.has_creases && !f.creases.complete())
+    return invalid_argument("truncate: the file is already cut inside its creases");
   for (const SrmChunk& c : f.flags) {
     if (!c.complete()) return invalid_argument("truncate: the file is already cut inside its flags");
     flags.push_back(c.bytes);
@@ -293,7 +312,7 @@ StatusOr<std::vector<uint8_t>> truncate_srm(const uint8_t* data, size_t size, ui
     left -= take;
     if (take < c.declared) break;  // cut inside (or a chunk the input itself had cut)
   }
-  return write_srm(f.header, f.base.bytes, flags, segments);
+  return write_srm(f.header, f.base.bytes, flags, segments, f.creases.bytes);
 }
 
 StatusOr<std::vector<uint8_t>> truncate_srm_to_size(const uint8_t* data, size_t size, uint64_t bytes) {
@@ -302,8 +321,9 @@ StatusOr<std::vector<uint8_t>> truncate_srm_to_size(const uint8_t* data, size_t 
   for (const SrmChunk& c : f.segments) hi += c.bytes.size();
   SRCODEC_ASSIGN_OR_RETURN(std::vector<uint8_t> smallest, truncate_srm(data, size, 0));
   if (smallest.size() > bytes)
-    return invalid_argument(std::to_string(bytes) + " bytes cannot hold the file's header, base mesh and refinement "
-                            "flags, which take " + std::to_string(smallest.size()));
+    return invalid_argument(std::to_string(bytes) + " bytes cannot hold the file's header, base mesh" +
+                            (f.header.has_creases ? ", creases" : "") + " and refinement flags, which take " +
+                            std::to_string(smallest.size()));
   while (lo < hi) {
     const uint64_t mid = lo + (hi - lo + 1) / 2;
     SRCODEC_ASSIGN_OR_RETURN(std::vector<uint8_t> file, truncate_srm(data, size, mid));

@@ -1,9 +1,10 @@
-// The .srm container, versions 1 and 2 (byte layout: format/srm/README.md): a header
-// with counts, bounding box, quantization and the table of every chunk's
-// length and checksum, then the base mesh chunk, one refinement-flag chunk per
-// level, and the coefficient segments in embedded order (bit-plane major,
-// level minor). Any prefix that holds the whole header parses: chunks past the
-// cut are missing or partial, and the decoder makes the best mesh of them.
+// The .srm container, versions 1 to 3 (byte layout: format/srm/README.md): a
+// header with counts, bounding box, quantization and the table of every
+// chunk's length and checksum, then the base mesh chunk, the crease chunk
+// (version 3), one refinement-flag chunk per level, and the coefficient
+// segments in embedded order (bit-plane major, level minor). Any prefix that
+// holds the whole header parses: chunks past the cut are missing or partial,
+// and the decoder makes the best mesh of them.
 #pragma once
 
 #include <Eigen/Core>
@@ -18,9 +19,11 @@
 namespace srcodec {
 
 // The newest version this srcodec reads and writes. Version 2 adds raw
-// planes (SrmHeader::raw_planes); a file without them is written as
-// version 1, which every reader of version 1 decodes.
-inline constexpr uint8_t kSrmVersion = 2;
+// planes (SrmHeader::raw_planes), version 3 the crease chunk
+// (SrmHeader::has_creases); a file is written in the oldest version that
+// holds what it has, so a file without creases is one every reader of
+// versions 1 and 2 decodes.
+inline constexpr uint8_t kSrmVersion = 3;
 inline constexpr uint8_t kSrmOldestVersion = 1;
 inline constexpr int kSrmMaxLevels = 12;
 inline constexpr int kSrmMaxPlane = 30;
@@ -47,16 +50,22 @@ struct SrmHeader {
   double tangential_factor = 1.0;
   int top_plane = -1;            // -1: every coefficient is zero
   // The segments of planes below this hold raw bits, not an arithmetic-coded
-  // stream (codec/bitplane_model.h). 0..31; > 0 only in version 2.
+  // stream (codec/bitplane_model.h). 0..31; version 1 has none, version 2
+  // at least one.
   int raw_planes = 0;
+  // The file has a crease chunk (version 3): one flag per base edge saying
+  // whether the surface is sharp along it (codec/crease_coder.h).
+  bool has_creases = false;
   SrmChunkEntry base;
+  SrmChunkEntry creases;                // with has_creases only
   std::vector<SrmChunkEntry> flags;     // L: flags of level j's triangles decide level j + 1
   // The segments present, in stream order: (top_plane + 1) x (L + 1) in a
   // whole file, fewer in a file cut by the encoder's rate control.
   std::vector<SrmChunkEntry> segments;
 
-  // The version write_srm writes: 2 with raw planes, else 1.
-  int version() const { return raw_planes > 0 ? 2 : 1; }
+  // The version write_srm writes: 3 with creases, else 2 with raw planes,
+  // else 1.
+  int version() const { return has_creases ? 3 : raw_planes > 0 ? 2 : 1; }
   size_t segment_count() const { return static_cast<size_t>(top_plane + 1) * (levels + 1); }
   size_t segment_index(int plane, int f) const {
     return static_cast<size_t>(top_plane - plane) * (levels + 1) + f;
@@ -89,14 +98,19 @@ struct SrmFile {
   uint64_t declared_size = 0;  // what the header's table adds up to
   uint64_t file_size = 0;      // bytes present (a prefix may be shorter)
   SrmChunk base;
+  SrmChunk creases;  // without header.has_creases: none (declared 0, not loaded)
   std::vector<SrmChunk> flags;
   std::vector<SrmChunk> segments;  // as many as the table lists; decoding stops after the last
 };
 
-// The whole file: header, table, then the chunks in table order.
+// The whole file: header, table, then the chunks in table order. The crease
+// chunk is written when `creases` is not empty or header.has_creases asks
+// for it (version 3); a file without creases has none, and its bytes are
+// those of version 1 or 2.
 std::vector<uint8_t> write_srm(SrmHeader header, const std::vector<uint8_t>& base,
                                const std::vector<std::vector<uint8_t>>& flags,
-                               const std::vector<std::vector<uint8_t>>& segments);
+                               const std::vector<std::vector<uint8_t>>& segments,
+                               const std::vector<uint8_t>& creases = {});
 
 // The file with only the first `segment_bytes` bytes of its coefficient
 // segments (the last one cut short where the count ends inside it), and a
@@ -109,8 +123,8 @@ inline StatusOr<std::vector<uint8_t>> truncate_srm(const std::vector<uint8_t>& f
 
 // The largest file truncate_srm makes of at most `bytes` bytes: its table
 // shrinks with the segments it lists, so the segment bytes that fit are
-// searched for, not subtracted. An error when even the header, base mesh
-// and flags alone take more.
+// searched for, not subtracted. An error when even the header, base mesh,
+// creases and flags alone take more.
 StatusOr<std::vector<uint8_t>> truncate_srm_to_size(const uint8_t* data, size_t size, uint64_t bytes);
 
 // Which chunks to load: those levels <= max_level need (-1: all), from the

@@ -43,6 +43,15 @@ struct Decoded {
   // The bytes end inside the base mesh: `mesh` holds the base triangles
   // decoded before the cut (maybe none), at level 0.
   bool base_cut = false;
+  // The base mesh's edges along which the surface is sharp (the encoder's
+  // creases): two vertex ids of `mesh` per edge, the smaller first, sorted.
+  // Base vertices are the first vertices of the mesh at every level, so the
+  // ids hold at any level; the mesh's edges that refine a crease edge are
+  // sharp too. Empty for a file without creases.
+  std::vector<uint32_t> crease_edges;
+  // The bytes end inside the creases: `mesh` is the base mesh (level 0) and
+  // crease_edges is empty.
+  bool creases_cut = false;
 };
 
 // Decodes `size` bytes at `data` (a whole .srm file or a prefix of one).
@@ -58,6 +67,12 @@ struct FileInfo {
   double bbox_min[3] = {0, 0, 0}, bbox_max[3] = {0, 0, 0};  // of that mesh
   double bits_per_vertex = 0;   // 8 file_bytes / input_vertices
   uint64_t base_vertices = 0, base_triangles = 0, base_bytes = 0;
+  // The creases (format version 3): the chunk's bytes (0: a file without
+  // creases) and how many base edges it marks; -1 when that is not known
+  // (the bytes end before the base mesh and creases are whole, or they do
+  // not decode).
+  uint64_t crease_bytes = 0;
+  int64_t crease_edges = 0;
   int base_bits = 0;            // base positions' grid, bits per coordinate
   int levels = 0;               // the finest level
   double quantizer_step = 0;
@@ -88,7 +103,8 @@ StatusOr<FileInfo> inspect(const uint8_t* data, size_t size);
 // coefficients' bytes as fit (what `srcodec encode --bytes N` writes). It
 // decodes like the prefix of the same length, and, unlike a plain prefix,
 // its checksums are whole. An error when `bytes` cannot hold the header,
-// base mesh and refinement flags (the message says how many that takes).
+// base mesh, creases and refinement flags (the message says how many that
+// takes).
 StatusOr<std::vector<uint8_t>> truncate(const uint8_t* data, size_t size, uint64_t bytes);
 
 }  // namespace srcodec

@@ -78,9 +78,10 @@ struct EncodeOptions {
 struct EncodeReport {
   int levels = 0;
   uint64_t base_vertices = 0;
+  uint64_t crease_edges = 0;       // base edges kept sharp (the remesh lays them along the input's creases)
   uint64_t bytes = 0;              // of the file returned
   uint64_t full_stream_bytes = 0;  // of the whole embedded stream
-  uint64_t minimum_bytes = 0;      // the header, base mesh and flags: the smallest file possible
+  uint64_t minimum_bytes = 0;      // the header, base mesh, creases and flags: the smallest file possible
   double psnr = 0;                 // of the file returned against the input, estimated by the encoder
   double seconds_remesh = 0, seconds_coding = 0, seconds_rate = 0;
 };

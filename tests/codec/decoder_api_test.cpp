@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -207,6 +208,77 @@ TEST(DecoderApi, TruncateKeepsAValidSmallerFile) {
   EXPECT_NE(tiny.status().message().find("header, base mesh and refinement flags"), std::string::npos)
       << tiny.status().message();
   EXPECT_FALSE(truncate(nullptr, 0, 1000).ok());
+}
+
+}  // namespace
+}  // namespace srcodec
+
+namespace srcodec {
+namespace {
+
+// tests/data/creases_v3.srm (a sphere with creases on 10 of its 30 base
+// edges): decode gives them as vertex ids of the mesh at every level, a
+// prefix cut inside them gives the base mesh, inspect counts them.
+TEST(DecoderApi, CreasesAsVertexIdsOfTheMeshAtEveryLevel) {
+  const std::vector<uint8_t> file = sample_file("creases_v3.srm");
+  const SrmFile layout = parse_srm(file.data(), file.size()).value();
+  ASSERT_TRUE(layout.header.has_creases);
+  std::vector<uint32_t> finest;
+  for (int level = -1; level <= 3; ++level) {
+    DecodeOptions options;
+    options.level = level;
+    StatusOr<Decoded> d = decode(file.data(), file.size(), options);
+    ASSERT_TRUE(d.ok()) << d.status().message();
+    const DecodedSrm expected = codec_decode(file, file.size(), level);
+    ASSERT_EQ(d->crease_edges.size(), 20u);
+    for (size_t k = 0; k < expected.crease_edges.size(); ++k) {
+      EXPECT_EQ(d->crease_edges[2 * k], static_cast<uint32_t>(expected.crease_edges[k][0]));
+      EXPECT_EQ(d->crease_edges[2 * k + 1], static_cast<uint32_t>(expected.crease_edges[k][1]));
+    }
+    EXPECT_FALSE(d->creases_cut);
+    expect_same_mesh(d->mesh, expected.mesh);
+    // Each crease is an edge of the base mesh, whose vertices keep their ids.
+    const StatusOr<Decoded> base = decode(file.data(), file.size(), DecodeOptions{0, 0, uint64_t{1} << 22, true});
+    for (size_t k = 0; k < d->crease_edges.size(); k += 2) {
+      bool edge = false;
+      for (size_t t = 0; t < base->mesh.triangle_count() && !edge; ++t)
+        for (int c = 0; c < 3; ++c) {
+          const uint32_t a = base->mesh.triangles[3 * t + c], b = base->mesh.triangles[3 * t + (c + 1) % 3];
+          edge = edge || (std::min(a, b) == d->crease_edges[k] && std::max(a, b) == d->crease_edges[k + 1]);
+        }
+      EXPECT_TRUE(edge) << k;
+      // The same vertex at this level as at level 0: near where it was (the
+      // base edges are about 1 long; the finer levels move it a little).
+      for (size_t end = k; end <= k + 1; ++end)
+        for (int c = 0; c < 3; ++c)
+          EXPECT_NEAR(d->mesh.positions[3 * d->crease_edges[end] + c],
+                      base->mesh.positions[3 * d->crease_edges[end] + c], 0.1);
+    }
+    if (level == -1) finest = d->crease_edges;
+  }
+  DecodeOptions cut;
+  cut.max_bytes = layout.creases.offset + layout.creases.declared - 1;
+  StatusOr<Decoded> d = decode(file.data(), file.size(), cut);
+  ASSERT_TRUE(d.ok()) << d.status().message();
+  EXPECT_TRUE(d->creases_cut);
+  EXPECT_FALSE(d->base_cut);
+  EXPECT_EQ(d->level, 0);
+  EXPECT_TRUE(d->crease_edges.empty());
+  EXPECT_EQ(d->mesh.triangle_count(), layout.header.base_triangles);
+
+  StatusOr<FileInfo> info = inspect(file.data(), file.size());
+  ASSERT_TRUE(info.ok()) << info.status().message();
+  EXPECT_EQ(info->version, 3);
+  EXPECT_EQ(info->crease_edges, 10);
+  EXPECT_EQ(info->crease_bytes, layout.creases.declared);
+  EXPECT_EQ(inspect(file.data(), cut.max_bytes)->crease_edges, -1);
+  EXPECT_EQ(inspect(file.data(), cut.max_bytes + 1)->crease_edges, 10);
+  const std::vector<uint8_t> spot = sample_file("spot_default.srm");
+  EXPECT_EQ(inspect(spot.data(), spot.size())->crease_edges, 0);
+  EXPECT_EQ(inspect(spot.data(), spot.size())->crease_bytes, 0u);
+  // truncate keeps them.
+  const std::vector<uint8_t> small = truncate(file.data(), file.size(), 800).value();
+  EXPECT_EQ(decode(small.data(), small.size())->crease_edges, finest);
 }
 
 }  // namespace

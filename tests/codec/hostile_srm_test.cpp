@@ -15,10 +15,11 @@
 namespace srcodec {
 namespace {
 
-// The golden file of .srm version 1 or 2 (raw planes).
+// The golden file of .srm version 1 or 2 (raw planes), or the sample of
+// version 3 (creases).
 std::vector<uint8_t> golden(int version = 1) {
-  const std::string s =
-      read_file_bytes(test::source_path("tests/data/golden_v" + std::to_string(version) + ".srm")).value();
+  const std::string name = version == 3 ? "creases_v3" : "golden_v" + std::to_string(version);
+  const std::string s = read_file_bytes(test::source_path("tests/data/" + name + ".srm")).value();
   return std::vector<uint8_t>(s.begin(), s.end());
 }
 
@@ -47,7 +48,7 @@ bool try_decode(const std::vector<uint8_t>& bytes, int level = -1) {
 }
 
 TEST(HostileSrm, EveryCutOfTheGoldenFile) {
-  for (int version : {1, 2}) {
+  for (int version : {1, 2, 3}) {
     const std::vector<uint8_t> file = golden(version);
     const SrmFile whole = parse_srm(file.data(), file.size()).value();
     // From the end of the header on, every prefix decodes (inside the base
@@ -61,7 +62,7 @@ TEST(HostileSrm, EveryCutOfTheGoldenFile) {
 }
 
 TEST(HostileSrm, AThousandSeededMutations) {
-  for (int version : {1, 2}) {
+  for (int version : {1, 2, 3}) {
     const std::vector<uint8_t> file = golden(version);
     std::mt19937 rng(2026);
     int meshes = 0;

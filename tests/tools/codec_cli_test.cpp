@@ -103,6 +103,25 @@ TEST(CodecCli, BadRequestsSayWhatAndKeepWhatWasThere) {
   EXPECT_NE(unreachable.err.find("out of reach"), std::string::npos) << unreachable.err;
 }
 
+// `info` shows the creases of a version-3 file (tests/data/creases_v3.srm:
+// 10 of its 30 base edges), and a file without them shows none.
+TEST(CodecCli, InfoShowsTheCreases) {
+  const std::string v3 = q(test::source_path("tests/data/creases_v3.srm"));
+  auto text = run_srcodec("info " + v3);
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find(".srm version 3"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("creases: 10 base edges, 5 bytes"), std::string::npos) << text.out;
+  auto json = run_srcodec("info --json " + v3);
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  EXPECT_EQ(json_number(json.out, "crease_edges"), 10);
+  EXPECT_EQ(json_number(json.out, "crease_bytes"), 5);
+  auto plain = run_srcodec("info " + q(test::source_path("tests/data/golden_v2.srm")));
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_EQ(plain.out.find("creases"), std::string::npos) << plain.out;
+  auto plain_json = run_srcodec("info --json " + q(test::source_path("tests/data/golden_v2.srm")));
+  EXPECT_EQ(json_number(plain_json.out, "crease_edges"), 0);
+}
+
 // An encode stopped by the user (Ctrl-C, after a second) leaves no partial
 // file behind: the old file stays as it was, and no temporary file is left.
 // Should the encode finish first (a fast machine), the file is whole.

@@ -50,6 +50,8 @@ Status run_decode(const DecodeCliOptions& o) {
         .field("triangles", decoded->mesh.triangle_count())
         .field("last_complete_plane", decoded->last_complete_plane)
         .field("base_cut", decoded->base_cut)
+        .field("crease_edges", decoded->crease_edges.size() / 2)
+        .field("creases_cut", decoded->creases_cut)
         .field("bytes_used", static_cast<size_t>(decoded->bytes_used))
         .field("bytes_present", static_cast<size_t>(present))
         .field("file_bytes", static_cast<size_t>(info.declared_bytes));
@@ -62,6 +64,8 @@ Status run_decode(const DecodeCliOptions& o) {
     if (decoded->base_cut)
       std::printf("  the file was cut inside its base mesh: %zu of its %llu triangles decoded\n",
                   decoded->mesh.triangle_count(), static_cast<unsigned long long>(info.base_triangles));
+    else if (decoded->creases_cut)
+      std::printf("  the file was cut inside its creases: decoded the base mesh (level 0) instead\n");
     else if (o.level >= 0 && decoded->level < o.level)
       std::printf("  the file was cut inside the refinement flags of level %d: decoded level %d instead\n",
                   decoded->level, decoded->level);

@@ -87,6 +87,7 @@ void print_result(const EncodeCliOptions& o, const MeshEncodeOptions& options, c
         .field("input_vertices", input.positions.size())
         .field("levels", r.header.levels)
         .field("base_vertices", static_cast<size_t>(r.header.base_vertices))
+        .field("crease_edges", r.crease_edges)
         .field("rate", rate)
         .field("bytes", static_cast<size_t>(keep))
         .field("full_stream_bytes", static_cast<size_t>(r.full_stream_bytes))

@@ -142,7 +142,7 @@ class StreamCuts {
       SRCODEC_ASSIGN_OR_RETURN(std::vector<uint8_t> smallest, truncate_srm(full_, 0));
       minimum_ = smallest.size();
     } else {
-      // Header, base mesh and flags: the offset of the first segment.
+      // Header, base mesh, creases and flags: the offset of the first segment.
       minimum_ = f.segments.empty() ? full_.size() : f.segments.front().offset;
     }
     return ok_status();

@@ -1,6 +1,6 @@
 // `srcodec info FILE.srm`: the header, the levels, and where the bytes go
-// (base mesh, flags, and coefficients per level and per bit plane), as the
-// public inspect() reads them.
+// (base mesh, creases, flags, and coefficients per level and per bit plane),
+// as the public inspect() reads them.
 #include <srcodec/decoder.h>
 
 #include <cstdio>
@@ -41,7 +41,13 @@ void print_json(const std::string& path, const FileInfo& f) {
       .field("declared_bytes", static_cast<size_t>(f.declared_bytes))
       .field("header_bytes", static_cast<size_t>(f.header_bytes))
       .field("base_mesh_bytes", static_cast<size_t>(f.base_bytes))
-      .field("input_vertices", static_cast<size_t>(f.input_vertices))
+      .field("crease_bytes", static_cast<size_t>(f.crease_bytes));
+  if (f.crease_edges >= 0) {
+    j.field("crease_edges", static_cast<size_t>(f.crease_edges));
+  } else {
+    j.null_field("crease_edges");  // not all present, or damaged
+  }
+  j.field("input_vertices", static_cast<size_t>(f.input_vertices))
       .field("input_triangles", static_cast<size_t>(f.input_triangles))
       .field("bpv", f.bits_per_vertex)
       .field("base_vertices", static_cast<size_t>(f.base_vertices))
@@ -64,6 +70,15 @@ void print_text(const std::string& path, const FileInfo& f) {
   std::printf("  header %llu bytes; base mesh %llu vertices, %llu triangles, %d-bit grid, %llu bytes\n",
               static_cast<ull>(f.header_bytes), static_cast<ull>(f.base_vertices), static_cast<ull>(f.base_triangles),
               f.base_bits, static_cast<ull>(f.base_bytes));
+  if (f.version >= 3) {
+    if (f.crease_edges >= 0) {
+      std::printf("  creases: %lld base edges, %llu bytes\n", static_cast<long long>(f.crease_edges),
+                  static_cast<ull>(f.crease_bytes));
+    } else {
+      std::printf("  creases: %llu bytes (not all present, or damaged: not counted)\n",
+                  static_cast<ull>(f.crease_bytes));
+    }
+  }
   std::printf("  %5s %10s %11s %18s\n", "level", "vertices", "flag bytes", "coefficient bytes");
   for (size_t l = 0; l < f.level_info.size(); ++l)
     std::printf("  %5zu %10llu %11llu %18llu\n", l, static_cast<ull>(f.level_info[l].vertices),

@@ -9,6 +9,8 @@ export interface SRMGeometryInfo {
   bytesReceived: number;
   lastCompletePlane: number;
   baseCut: boolean;
+  /** DecodedMesh.creaseEdges: two vertex ids per base edge along which the surface is sharp. */
+  creaseEdges: Uint32Array;
   triangles: number;
   /** How long the decode took (refinements only). */
   milliseconds?: number;

@@ -113,7 +113,7 @@ export class SRMLoader extends Loader {
     if (this.computeNormals) geometry.computeVertexNormals();
     geometry.userData.srcodec = {
       level: mesh.level, bytesUsed: mesh.bytesUsed, bytesReceived, lastCompletePlane: mesh.lastCompletePlane,
-      baseCut: mesh.baseCut, triangles: mesh.triangleCount, error,
+      baseCut: mesh.baseCut, creaseEdges: mesh.creaseEdges, triangles: mesh.triangleCount, error,
     };
     return geometry;
   }

@@ -64,10 +64,12 @@ function fileInfoFrom(n) {
     version: next(), fileBytes: next(), declaredBytes: next(), headerBytes: next(),
     inputVertices: next(), inputTriangles: next(),
     bboxMin: [next(), next(), next()], bboxMax: [next(), next(), next()],
-    bitsPerVertex: next(), baseVertices: next(), baseTriangles: next(), baseBytes: next(), baseBits: next(),
+    bitsPerVertex: next(), baseVertices: next(), baseTriangles: next(), baseBytes: next(),
+    creaseBytes: next(), creaseEdges: next(), baseBits: next(),
     levels: next(), quantizerStep: next(), topPlane: next(), rawPlanes: next(),
     levelInfo: [], planes: [],
   };
+  if (info.creaseEdges < 0) info.creaseEdges = null;  // not all present, or damaged (srcodec info's null)
   for (let count = next(); count > 0; --count) {
     info.levelInfo.push({ vertices: next(), flagBytes: next(), coefficientBytes: next(), drawableFrom: next() });
   }
@@ -120,9 +122,12 @@ class Decoder {
       const numbers = this.#numbers(e);
       const positions = new Float32Array(e.memory.buffer, e.srcodec_positions(), e.srcodec_position_count()).slice();
       const indices = new Uint32Array(e.memory.buffer, e.srcodec_indices(), e.srcodec_index_count()).slice();
+      // After the scalars: the crease edges' count, then two vertex ids each (wasm_api.cpp).
+      const creaseEdges = Uint32Array.from(numbers.subarray(6, 6 + 2 * numbers[5]));
       return {
         positions, indices,
         level: numbers[0], bytesUsed: numbers[1], lastCompletePlane: numbers[2], baseCut: numbers[3] !== 0,
+        creasesCut: numbers[4] !== 0, creaseEdges,
         vertexCount: positions.length / 3, triangleCount: indices.length / 3,
       };
     });

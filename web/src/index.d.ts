@@ -14,6 +14,13 @@ export interface DecodedMesh {
   lastCompletePlane: number;
   /** The bytes end inside the base mesh: `indices` holds the base triangles decoded before the cut. */
   baseCut: boolean;
+  /**
+   * The base edges along which the surface is sharp: two vertex ids each, the smaller first, sorted. Base vertices
+   * come first at every level, so the ids hold at any level. Empty for a file without creases.
+   */
+  creaseEdges: Uint32Array;
+  /** The bytes end inside the creases: the mesh is the base mesh (level 0) and creaseEdges is empty. */
+  creasesCut: boolean;
   vertexCount: number;
   triangleCount: number;
 }
@@ -56,6 +63,10 @@ export interface FileInfo {
   baseVertices: number;
   baseTriangles: number;
   baseBytes: number;
+  /** The crease chunk's bytes (format version 3); 0 for a file without creases. */
+  creaseBytes: number;
+  /** How many base edges are creases; null when the base mesh and creases are not all present, or damaged. */
+  creaseEdges: number | null;
   baseBits: number;
   levels: number;
   quantizerStep: number;

@@ -61,8 +61,12 @@ int srcodec_decode(const uint8_t* data, uint32_t size, int level, double max_byt
   const srcodec::Mesh& mesh = decoded->mesh;
   r.positions.assign(mesh.positions.begin(), mesh.positions.end());
   r.indices = std::move(decoded->mesh.triangles);
+  // The scalars, then the crease edges' count and their vertex ids (a few
+  // per base mesh: not worth an array export of their own).
   r.numbers = {static_cast<double>(decoded->level), static_cast<double>(decoded->bytes_used),
-               static_cast<double>(decoded->last_complete_plane), decoded->base_cut ? 1.0 : 0.0};
+               static_cast<double>(decoded->last_complete_plane), decoded->base_cut ? 1.0 : 0.0,
+               decoded->creases_cut ? 1.0 : 0.0, static_cast<double>(decoded->crease_edges.size() / 2)};
+  r.numbers.insert(r.numbers.end(), decoded->crease_edges.begin(), decoded->crease_edges.end());
   return 0;
 }
 
@@ -79,7 +83,8 @@ int srcodec_inspect(const uint8_t* data, uint32_t size) {
   out = {n(f.version), n(f.file_bytes), n(f.declared_bytes), n(f.header_bytes), n(f.input_vertices),
          n(f.input_triangles), f.bbox_min[0], f.bbox_min[1], f.bbox_min[2], f.bbox_max[0], f.bbox_max[1],
          f.bbox_max[2], f.bits_per_vertex, n(f.base_vertices), n(f.base_triangles), n(f.base_bytes),
-         n(f.base_bits), n(f.levels), f.quantizer_step, n(f.top_plane), n(f.raw_planes)};
+         n(f.crease_bytes), n(f.crease_edges), n(f.base_bits), n(f.levels), f.quantizer_step, n(f.top_plane),
+         n(f.raw_planes)};
   out.push_back(n(f.level_info.size()));
   for (const auto& l : f.level_info) {
     out.insert(out.end(), {n(l.vertices), n(l.flag_bytes), n(l.coefficient_bytes), n(l.drawable_from)});

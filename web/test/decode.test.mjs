@@ -49,6 +49,8 @@ function compareWithNative(path, bytes, { level = -1, prefix = 0 } = {}) {
   assert.equal(mesh.bytesUsed, r.bytes_used, `${what}: bytesUsed`);
   assert.equal(mesh.lastCompletePlane, r.last_complete_plane, `${what}: lastCompletePlane`);
   assert.equal(mesh.baseCut, r.base_cut, `${what}: baseCut`);
+  assert.equal(mesh.creasesCut, r.creases_cut, `${what}: creasesCut`);
+  assert.equal(mesh.creaseEdges.length, 2 * r.crease_edges, `${what}: creaseEdges`);
   assertSameDecode(viaCut.mesh, mesh, `${what}, as cut bytes`);
   return mesh;
 }
@@ -88,7 +90,7 @@ for (const version of [1, 2]) {
   });
 }
 
-for (const name of ['spot_default', 'bunny_npm_default']) {
+for (const name of ['spot_default', 'bunny_npm_default', 'creases_v3']) {
   test(`the bundled sample ${name}.srm decodes as C++ decodes it at every level`, () => {
     const path = dataPath(`${name}.srm`);
     const bytes = readData(`${name}.srm`);
@@ -144,6 +146,7 @@ test('20 prefixes of spot_default.srm decode as C++ decodes them, and refuse as 
 function assertSameInfo(info, native, what) {
   const same = [['version', 'version'], ['rawPlanes', 'raw_planes'], ['fileBytes', 'file_bytes'],
     ['declaredBytes', 'declared_bytes'], ['headerBytes', 'header_bytes'], ['baseBytes', 'base_mesh_bytes'],
+    ['creaseBytes', 'crease_bytes'], ['creaseEdges', 'crease_edges'],
     ['inputVertices', 'input_vertices'], ['inputTriangles', 'input_triangles'], ['baseVertices', 'base_vertices'],
     ['baseTriangles', 'base_triangles'], ['baseBits', 'base_bits'], ['topPlane', 'top_plane']];
   for (const [ours, theirs] of same) assert.equal(info[ours], native[theirs], `${what}: ${ours}`);
@@ -162,7 +165,7 @@ function assertSameInfo(info, native, what) {
 test('inspect agrees with srcodec info --json, for whole files and prefixes', () => {
   const files = scratch();
   try {
-    for (const name of ['golden_v1', 'golden_v2', 'spot_default', 'bunny_npm_default']) {
+    for (const name of ['golden_v1', 'golden_v2', 'spot_default', 'bunny_npm_default', 'creases_v3']) {
       const bytes = readData(`${name}.srm`);
       assertSameInfo(decoder.inspect(bytes), nativeInfo(dataPath(`${name}.srm`)), name);
       const info = decoder.inspect(bytes);
@@ -184,4 +187,32 @@ test('inspect agrees with srcodec info --json, for whole files and prefixes', ()
   } finally {
     files.remove();
   }
+});
+
+// tests/data/creases_v3.srm: a sphere with creases on 10 of its 30 base
+// edges. Every level has them, as base vertex ids of its mesh; every prefix
+// decodes as C++ decodes it, and one that ends inside the creases gives the
+// base mesh without them.
+test('creases_v3.srm: the crease edges at every level and the prefixes around them', () => {
+  const path = dataPath('creases_v3.srm');
+  const bytes = readData('creases_v3.srm');
+  const info = decoder.inspect(bytes);
+  assert.equal(info.version, 3);
+  assert.equal(info.creaseEdges, 10);
+  const base = decoder.decode(bytes, { level: 0 });
+  assert.equal(base.creaseEdges.length, 20);
+  for (let level = -1; level <= info.levels; ++level) {
+    const mesh = compareWithNative(path, bytes, { level });
+    assert.deepEqual(mesh.creaseEdges, base.creaseEdges, `level ${level}`);
+  }
+  const creasesEnd = info.levelInfo[1].drawableFrom - info.levelInfo[1].flagBytes;
+  const creasesBegin = creasesEnd - info.creaseBytes;
+  for (let prefix = info.headerBytes; prefix <= creasesEnd + 1; ++prefix) {
+    const mesh = compareWithNative(path, bytes, { prefix });
+    const inside = prefix >= creasesBegin && prefix < creasesEnd;
+    assert.equal(mesh.creasesCut, inside, `${prefix} bytes: creasesCut`);
+    assert.equal(mesh.creaseEdges.length, prefix >= creasesEnd ? 20 : 0, `${prefix} bytes: creaseEdges`);
+    if (inside) assert.equal(mesh.triangleCount, info.baseTriangles, `${prefix} bytes: the base mesh`);
+  }
+  assert.equal(decoder.inspect(bytes.subarray(0, creasesEnd - 1)).creaseEdges, null);
 });

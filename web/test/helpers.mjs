@@ -99,6 +99,8 @@ export function assertSameDecode(a, b, what) {
   assert.equal(a.bytesUsed, b.bytesUsed, `${what}: bytesUsed`);
   assert.equal(a.lastCompletePlane, b.lastCompletePlane, `${what}: lastCompletePlane`);
   assert.equal(a.baseCut, b.baseCut, `${what}: baseCut`);
+  assert.equal(a.creasesCut, b.creasesCut, `${what}: creasesCut`);
+  assert.deepEqual(a.creaseEdges, b.creaseEdges, `${what}: creaseEdges`);
   assert.deepEqual(new Uint32Array(a.positions.buffer, a.positions.byteOffset, a.positions.length),
     new Uint32Array(b.positions.buffer, b.positions.byteOffset, b.positions.length), `${what}: positions`);
   assert.deepEqual(a.indices, b.indices, `${what}: indices`);

@@ -11,7 +11,7 @@ import {
 } from './helpers.mjs';
 
 const decoder = await createDecoder();
-const FILES = ['spot_default.srm', 'golden_v2.srm'];
+const FILES = ['spot_default.srm', 'golden_v2.srm', 'creases_v3.srm'];
 
 function errorOf(run) {
   try {

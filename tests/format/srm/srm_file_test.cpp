@@ -210,6 +210,82 @@ TEST(SrmFile, TruncationKeepsWholeSegmentsThenCutsOneAndListsOnlyThose) {
   EXPECT_TRUE(truncate_srm(prefix, 5).ok());
 }
 
+// Version 3: the crease chunk sits between the base mesh and the flags, with
+// its entry after the base mesh's; the raw plane count may be 0. Without
+// creases the same header writes version 1 or 2, as it always did.
+TEST(SrmFile, Version3CarriesTheCreaseChunkRightAfterTheBaseMesh) {
+  const Sample s = make_sample();
+  ASSERT_EQ(s.file[4], 1);
+  const std::vector<uint8_t> creases = filled(6, 9);
+  for (int raw : {0, 2}) {
+    SrmHeader h = s.header;
+    h.raw_planes = raw;
+    const std::vector<uint8_t> without = write_srm(h, s.base, s.flags, s.segments);
+    EXPECT_EQ(without[4], raw > 0 ? 2 : 1);
+    const std::vector<uint8_t> file = write_srm(h, s.base, s.flags, s.segments, creases);
+    ASSERT_EQ(file[4], 3);
+    // The table grows by the entry (a 1-byte length and a CRC-32), the file by the chunk too.
+    const uint64_t entry = 1 + 4 + (raw > 0 ? 0 : 1);  // version 1 has no raw plane byte
+    EXPECT_EQ(file.size(), without.size() + entry + creases.size()) << raw;
+    StatusOr<SrmFile> f = parse_srm(file.data(), file.size());
+    ASSERT_TRUE(f.ok()) << f.status().message();
+    EXPECT_TRUE(f->header.has_creases);
+    EXPECT_EQ(f->header.version(), 3);
+    EXPECT_EQ(f->header.raw_planes, raw);
+    EXPECT_EQ(f->creases.offset, f->base.offset + s.base.size());
+    EXPECT_EQ(f->flags[0].offset, f->creases.offset + creases.size());
+    EXPECT_EQ(f->creases.bytes, creases);
+    EXPECT_TRUE(verify_chunk(f->creases, false, "the creases").ok());
+    EXPECT_EQ(f->flags[1].bytes, s.flags[1]);
+    EXPECT_EQ(f->segments.back().bytes, s.segments.back());
+    // Every level needs the creases, level 0 too.
+    SrmReadOptions o;
+    o.max_level = 0;
+    EXPECT_TRUE(parse_srm(file.data(), file.size(), o)->creases.loaded);
+    // A cut inside the crease chunk: the part present, not complete.
+    StatusOr<SrmFile> cut = parse_srm(file.data(), f->creases.offset + 2);
+    ASSERT_TRUE(cut.ok()) << cut.status().message();
+    EXPECT_EQ(cut->creases.bytes.size(), 2u);
+    EXPECT_FALSE(cut->creases.complete());
+    // A damaged crease chunk fails its checksum, named.
+    std::vector<uint8_t> bad = file;
+    bad[f->creases.offset + 1] ^= 0x10;
+    const Status status = verify_chunk(parse_srm(bad.data(), bad.size())->creases, false, "the creases");
+    EXPECT_NE(status.message().find("the creases (bytes"), std::string::npos) << status.message();
+    // Truncation keeps the creases and version 3.
+    const std::vector<uint8_t> small = truncate_srm(file, 12).value();
+    EXPECT_EQ(small[4], 3);
+    EXPECT_EQ(parse_srm(small.data(), small.size())->creases.bytes, creases);
+    EXPECT_FALSE(truncate_srm(file.data(), f->creases.offset + 2, 0).ok());
+  }
+}
+
+TEST(SrmFile, Version2NeedsRawPlanesVersion3DoesNot) {
+  const Sample s = make_sample();
+  for (bool with_creases : {false, true}) {
+    const std::vector<uint8_t> creases = with_creases ? filled(3, 1) : std::vector<uint8_t>{};
+    SrmHeader h = s.header;
+    h.raw_planes = 1;
+    std::vector<uint8_t> file = write_srm(h, s.base, s.flags, s.segments, creases);
+    h.raw_planes = 3;
+    const std::vector<uint8_t> three = write_srm(h, s.base, s.flags, s.segments, creases);
+    size_t at = 0;  // the raw plane count: the first byte the two differ in
+    while (file[at] == three[at]) ++at;
+    ASSERT_EQ(file[at], 1);
+    file[at] = 0;
+    const size_t header = parse_srm(three.data(), three.size())->header_size;
+    const uint32_t crc = crc32(file.data(), header - 4);
+    for (int i = 0; i < 4; ++i) file[header - 4 + i] = static_cast<uint8_t>(crc >> (8 * i));
+    StatusOr<SrmFile> f = parse_srm(file.data(), file.size());
+    ASSERT_EQ(f.ok(), with_creases) << (f.ok() ? "" : f.status().message());
+    if (with_creases) {
+      EXPECT_EQ(f->header.raw_planes, 0);
+    } else {
+      EXPECT_NE(f.status().message().find("raw planes"), std::string::npos) << f.status().message();
+    }
+  }
+}
+
 TEST(Checksum, MatchesTheStandardCheckValue) {
   const uint8_t digits[] = {'1', '2', '3', '4', '5', '6', '7', '8', '9'};
   EXPECT_EQ(crc32(digits, 9), 0xCBF43926u);

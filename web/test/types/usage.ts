@@ -15,6 +15,8 @@ export async function use(bytes: Uint8Array, response: Response): Promise<number
   const indices: Uint32Array = mesh.indices;
   const info: FileInfo = decoder.inspect(bytes);
   const firstDrawable: number = info.levelInfo[0].drawableFrom + info.planes.length;
+  const sharp: Uint32Array = mesh.creaseEdges;
+  const creases: number = (info.creaseEdges ?? 0) + info.creaseBytes + (mesh.creasesCut ? 1 : 0);
 
   const progressive = new ProgressiveDecoder(decoder, { everyBytes: 1 << 16, onRefine: (m, e) => m.level + e.bytesReceived });
   progressive.push(bytes.subarray(0, 100));
@@ -32,5 +34,5 @@ export async function use(bytes: Uint8Array, response: Response): Promise<number
   const shown = new THREE.Mesh(new THREE.BufferGeometry(), material);
   loader.load('bunny.srm', (geometry) => { shown.geometry = geometry; }, (event) => event.loaded / event.total,
     (error) => error.geometry?.dispose(), (geometry, event) => geometry.userData.srcodec.level + event.milliseconds);
-  return positions.length + indices.length + firstDrawable + last.level + (why?.length ?? 0);
+  return positions.length + indices.length + firstDrawable + last.level + (why?.length ?? 0) + sharp.length + creases;
 }
