@@ -12,9 +12,13 @@
 //    1/2 cos(4 pi i/K)) / K for K >= 5; K = 3: 5/12, -1/12, -1/12; K = 4: 3/8,
 //    0, -1/8, 0), and the stencil is the average over those ends.
 // See wavelet/README.md for why this is the rule at the boundary.
+// With creases (README, "Creases"), the same rules on the mesh cut open
+// along them, and the 4-point rule along each crease curve (Hoppe et al.
+// 1994; Biermann, Levin, Zorin 2000).
 #include "wavelet/butterfly_stencil.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -87,14 +91,34 @@ std::array<WingEdge, 4> wing_edges(int32_t a, int32_t b, int32_t x, int32_t y) {
   return {{{b, x, a}, {x, a, b}, {a, y, b}, {y, b, a}}};
 }
 
-// The corner of the triangle across a wing edge; -1 on the boundary.
-int32_t across(const LevelMesh& mesh, const WingEdge& e) { return mesh.third(e.v, e.u); }
+// The mesh as the interior rules see it. `Whole`: the level mesh itself.
+// `CutOpen`: the level mesh cut open along its creases, each side of a
+// crease a surface with that crease as its boundary (Hoppe et al. 1994,
+// Biermann, Levin, Zorin 2000): nothing lies across a crease edge, and a
+// crease vertex is a boundary vertex. A vertex that is not a crease vertex
+// keeps its valence and its closed or open fan, so the rules' valence tests
+// and fan walks (extraordinary, four_point) need no cut: they are only
+// asked about such vertices.
+struct Whole {
+  const LevelMesh& mesh;
+  // The corner of the triangle across a wing edge; -1 on the boundary.
+  int32_t across(const WingEdge& e) const { return mesh.third(e.v, e.u); }
+  bool on_boundary(int32_t v) const { return mesh.on_boundary(v); }
+};
+
+struct CutOpen {
+  const LevelMesh& mesh;
+  const SharpEdges& sharp;
+  int32_t across(const WingEdge& e) const { return sharp.crease(e.u, e.v) ? -1 : mesh.third(e.v, e.u); }
+  bool on_boundary(int32_t v) const { return mesh.on_boundary(v) || sharp.crease_vertex(v); }
+};
 
 // Wing of the 8-point stencil across edge e: the corner across, or the
 // reflection u + v - w when the edge is on the boundary.
-void wing(const LevelMesh& mesh, const WingEdge& e, std::vector<Tap>* out) {
+template <typename Surface>
+void wing(const Surface& surface, const WingEdge& e, std::vector<Tap>* out) {
   constexpr double kWing = -1.0 / 16;
-  const int32_t corner = across(mesh, e);
+  const int32_t corner = surface.across(e);
   if (corner >= 0) {
     add(out, corner, kWing);
     return;
@@ -105,12 +129,13 @@ void wing(const LevelMesh& mesh, const WingEdge& e, std::vector<Tap>* out) {
 }
 
 // Triangles (a, b, x) and (b, a, y).
-void eight_point(const LevelMesh& mesh, int32_t a, int32_t b, int32_t x, int32_t y, std::vector<Tap>* out) {
+template <typename Surface>
+void eight_point(const Surface& surface, int32_t a, int32_t b, int32_t x, int32_t y, std::vector<Tap>* out) {
   add(out, a, 0.5);
   add(out, b, 0.5);
   add(out, x, 1.0 / 8);
   add(out, y, 1.0 / 8);
-  for (const WingEdge& e : wing_edges(a, b, x, y)) wing(mesh, e, out);
+  for (const WingEdge& e : wing_edges(a, b, x, y)) wing(surface, e, out);
 }
 
 // A scratch array of n values on the stack, or on the heap when n exceeds
@@ -192,23 +217,48 @@ void extraordinary(const LevelMesh& mesh, int32_t e, int32_t o, double scale, st
 }
 
 // Whether the interior edge (a, b) takes the 8-point rule.
-bool eight_point_rule(const LevelMesh& mesh, int32_t a, int32_t b) {
-  const int32_t va = mesh.valence(a), vb = mesh.valence(b);
-  const bool ba = mesh.on_boundary(a), bb = mesh.on_boundary(b);
+template <typename Surface>
+bool eight_point_rule(const Surface& surface, int32_t a, int32_t b) {
+  const int32_t va = surface.mesh.valence(a), vb = surface.mesh.valence(b);
+  const bool ba = surface.on_boundary(a), bb = surface.on_boundary(b);
   return (va == 6 && vb == 6) || (ba && vb == 6) || (bb && va == 6) || (ba && bb);
 }
 
-void interior_taps(const LevelMesh& mesh, int32_t a, int32_t b, int32_t x, int32_t y, std::vector<Tap>* out) {
-  if (eight_point_rule(mesh, a, b)) {
-    eight_point(mesh, a, b, x, y, out);
+template <typename Surface>
+void interior_taps(const Surface& surface, int32_t a, int32_t b, int32_t x, int32_t y, std::vector<Tap>* out) {
+  if (eight_point_rule(surface, a, b)) {
+    eight_point(surface, a, b, x, y, out);
     return;
   }
-  const int32_t va = mesh.valence(a), vb = mesh.valence(b);
-  const bool ba = mesh.on_boundary(a), bb = mesh.on_boundary(b);
+  const int32_t va = surface.mesh.valence(a), vb = surface.mesh.valence(b);
+  const bool ba = surface.on_boundary(a), bb = surface.on_boundary(b);
   const bool irregular_a = va != 6 && !ba, irregular_b = vb != 6 && !bb;
   const double scale = (irregular_a && irregular_b) ? 0.5 : 1.0;
-  if (irregular_a) extraordinary(mesh, a, b, scale, out);
-  if (irregular_b) extraordinary(mesh, b, a, scale, out);
+  if (irregular_a) extraordinary(surface.mesh, a, b, scale, out);
+  if (irregular_b) extraordinary(surface.mesh, b, a, scale, out);
+}
+
+// The 4-point rule along the sharp curve through the sharp edge (p, q)
+// (the 4-point scheme of Dyn, Levin, Gregory 1987, the modified Butterfly's
+// boundary rule: Zorin, Schröder, Sweldens 1996): -1/16, 9/16, 9/16, -1/16.
+// Where the curve ends at p (a corner, a dart, or the end of an open curve)
+// the point before p is the ghost 2p - q, the linear extrapolation, so p's
+// weight becomes 7/16 and q's 10/16: a straight curve stays straight and a
+// corner stays sharp (Hoppe et al. 1994 likewise subdivide each crease
+// curve on its own between corners). Both ends ending: the midpoint. The
+// sums of these dyadic weights are exact.
+void curve(const SharpEdges& sharp, int32_t p, int32_t q, std::vector<Tap>* out) {
+  add(out, p, 9.0 / 16);
+  add(out, q, 9.0 / 16);
+  for (const auto& [end, other] : {std::array<int32_t, 2>{p, q}, std::array<int32_t, 2>{q, p}}) {
+    const int32_t next = sharp.curve_neighbour(end, other);
+    if (next >= 0) {
+      add(out, next, -1.0 / 16);
+    } else {  // -1/16 (2 end - other)
+      add(out, end, -2.0 / 16);
+      add(out, other, 1.0 / 16);
+    }
+  }
 }
 
 // Sorts by vertex, stably (the weights of a repeated vertex are summed in the
@@ -284,14 +334,76 @@ StatusOr<LevelMesh> LevelMesh::build(const std::vector<std::array<int32_t, 3>>& 
   return m;
 }
 
-std::array<int32_t, 4> regular_wings(const LevelMesh& mesh, int32_t a, int32_t b, int32_t left, int32_t right) {
+std::vector<std::array<int32_t, 2>> LevelMesh::boundary_edges() const {
+  std::vector<std::array<int32_t, 2>> out;
+  for (int32_t a = 0; a < vertex_count(); ++a)
+    for (uint32_t i = begin_[a]; i < begin_[a + 1]; ++i)
+      if (third(out_[i].to, a) < 0) out.push_back({a, out_[i].to});
+  return out;
+}
+
+StatusOr<SharpEdges> SharpEdges::build(const LevelMesh& mesh, const std::vector<std::array<int32_t, 2>>& creases) {
+  const int32_t n = mesh.vertex_count();
+  // Every sharp edge once as (min, max, crease?), creases first where an
+  // edge is both, then grouped by vertex by counting sort.
+  struct Sharp {
+    int32_t a, b;
+    bool crease;
+  };
+  std::vector<Sharp> all;
+  for (const auto& [a, b] : creases) {
+    if (a < 0 || b < 0 || a >= n || b >= n || !mesh.has_edge(a, b))
+      return internal_error("lifting: crease (" + std::to_string(a) + ", " + std::to_string(b) +
+                            ") is not an edge of its level mesh");
+    all.push_back({std::min(a, b), std::max(a, b), true});
+  }
+  for (const auto& [a, b] : mesh.boundary_edges()) all.push_back({std::min(a, b), std::max(a, b), false});
+  std::sort(all.begin(), all.end(), [](const Sharp& x, const Sharp& y) {
+    return x.a != y.a ? x.a < y.a : (x.b != y.b ? x.b < y.b : x.crease > y.crease);
+  });
+  const auto same_edge = [](const Sharp& x, const Sharp& y) { return x.a == y.a && x.b == y.b; };
+  all.erase(std::unique(all.begin(), all.end(), same_edge), all.end());
+  SharpEdges s;
+  s.begin_.assign(static_cast<size_t>(n) + 1, 0);
+  s.crease_vertex_.assign(n, 0);
+  for (const Sharp& e : all) {
+    ++s.begin_[e.a + 1];
+    ++s.begin_[e.b + 1];
+    if (e.crease) s.crease_vertex_[e.a] = s.crease_vertex_[e.b] = 1;
+  }
+  for (int32_t v = 0; v < n; ++v) s.begin_[v + 1] += s.begin_[v];
+  s.edges_.resize(2 * all.size());
+  std::vector<uint32_t> fill(s.begin_.begin(), s.begin_.end() - 1);
+  for (const Sharp& e : all) {
+    s.edges_[fill[e.a]++] = {e.b, e.crease};
+    s.edges_[fill[e.b]++] = {e.a, e.crease};
+  }
+  return s;
+}
+
+namespace {
+
+template <typename Surface>
+std::array<int32_t, 4> wings_of(const Surface& surface, int32_t a, int32_t b, int32_t left, int32_t right) {
   const std::array<int32_t, 4> none{-1, -1, -1, -1};
-  if (left < 0 || right < 0 || !eight_point_rule(mesh, a, b)) return none;
+  if (left < 0 || right < 0 || !eight_point_rule(surface, a, b)) return none;
   std::array<int32_t, 4> w = none;
   const std::array<WingEdge, 4> edges = wing_edges(a, b, left, right);
   for (int k = 0; k < 4; ++k)
-    if ((w[k] = across(mesh, edges[k])) < 0) return none;
+    if ((w[k] = surface.across(edges[k])) < 0) return none;
   return w;
+}
+
+}  // namespace
+
+std::array<int32_t, 4> regular_wings(const LevelMesh& mesh, int32_t a, int32_t b, int32_t left, int32_t right) {
+  return wings_of(Whole{mesh}, a, b, left, right);
+}
+
+std::array<int32_t, 4> regular_wings(const LevelMesh& mesh, const SharpEdges& sharp, int32_t a, int32_t b,
+                                     int32_t left, int32_t right) {
+  if (sharp.crease(a, b)) return {-1, -1, -1, -1};
+  return wings_of(CutOpen{mesh, sharp}, a, b, left, right);
 }
 
 void butterfly_taps(const LevelMesh& mesh, int32_t a, int32_t b, int32_t left, int32_t right,
@@ -299,12 +411,32 @@ void butterfly_taps(const LevelMesh& mesh, int32_t a, int32_t b, int32_t left, i
   const size_t from = taps->size();
   const bool forward = left >= 0, backward = right >= 0;
   if (forward && backward)
-    interior_taps(mesh, a, b, left, right, taps);
+    interior_taps(Whole{mesh}, a, b, left, right, taps);
   else if (forward)
     four_point(mesh, a, b, taps);
   else
     four_point(mesh, b, a, taps);
   merge(taps, from);
+}
+
+void butterfly_taps(const LevelMesh& mesh, const SharpEdges& sharp, int32_t a, int32_t b, int32_t left,
+                    int32_t right, std::vector<Tap>* taps) {
+  const size_t from = taps->size();
+  const bool forward = left >= 0, backward = right >= 0;
+  if (forward && backward && !sharp.crease(a, b))
+    interior_taps(CutOpen{mesh, sharp}, a, b, left, right, taps);
+  else if ((forward && backward) || sharp.crease_vertex(a) || sharp.crease_vertex(b))
+    curve(sharp, a, b, taps);
+  else if (forward)  // a boundary edge between two vertices off the creases: the rule without creases
+    four_point(mesh, a, b, taps);
+  else
+    four_point(mesh, b, a, taps);
+  merge(taps, from);
+}
+
+uint32_t update_divisor(const LevelMesh& mesh, const SharpEdges& sharp, int32_t v, int32_t w) {
+  if (!sharp.crease_vertex(v)) return static_cast<uint32_t>(mesh.valence(v));
+  return sharp.degree(v) == 2 && sharp.sharp(v, w) ? kCurveUpdateDivisor : 0;
 }
 
 }  // namespace srcodec

@@ -22,6 +22,13 @@ namespace srcodec {
 // unchanged (wavelet/README.md, "Update weight").
 inline constexpr double kUpdateWeight = 0.75;
 
+// A vertex on a crease with two sharp edges moves by 1/4 of the detail on
+// each of them, the update of the 1D lifted 4-point scheme that keeps the
+// mean of a curve (wavelet/README.md, "Creases"): the update divisor
+// (LiftingPlan::Odd) that gives kUpdateWeight / divisor = 1/4 exactly.
+inline constexpr uint32_t kCurveUpdateDivisor = 3;
+static_assert(kUpdateWeight / kCurveUpdateDivisor == 0.25, "the curve update is 1/4 per edge");
+
 // Connectivity-only precomputation for one hierarchy, shared by encoder and
 // decoder: it depends only on the TriangleHierarchy, never on positions.
 // Flat arrays: per level, its odd vertices in increasing id order, each with
@@ -34,7 +41,13 @@ class LiftingPlan {
   // vertices of levels above it get no coefficient). Fails on levels < 0 or a
   // hierarchy whose level meshes are not manifold.
   // `base_creases`: base edges (a < b, sorted, unique) along which the
-  // surface is sharp (SemiRegularMesh::crease_edges); empty: none.
+  // surface is sharp (SemiRegularMesh::crease_edges); empty: none, and the
+  // plan is the plain Butterfly's. Edges that refine a crease are creases at
+  // every level, and the stencils and update weights near them follow the
+  // crease rules (wavelet/README.md, "Creases"). Fails (invalid_argument) on
+  // an entry that is not an edge of the base mesh, has a vertex outside the
+  // base vertices or a >= b, or is not after the one before it (unsorted or
+  // repeated: refused rather than sorted, as the list is a file's contents).
   static StatusOr<LiftingPlan> build(const TriangleHierarchy& hierarchy, int32_t levels,
                                      const std::vector<std::array<int32_t, 2>>& base_creases = {});
 
@@ -58,18 +71,23 @@ class LiftingPlan {
     // wing[1], wing[2] hold the range of its stencil in taps() (see
     // taps_begin(); one field for either keeps the plan 44 bytes an odd).
     std::array<int32_t, 4> wing{-1, -1, -1, -1};
-    // Valences of a and b in the level-(j-1) mesh, the update weights' divisors.
-    uint32_t valence_a = 1, valence_b = 1;
+    // The update divisors of a and b: each moves by kUpdateWeight / divisor
+    // times this odd's detail. The divisor is the vertex's valence in the
+    // level-(j-1) mesh; at a crease vertex, kCurveUpdateDivisor (1/4) for an
+    // odd on one of its two sharp edges, 0 for no update (a corner or an end
+    // of a crease, or an edge off the crease). Integers, not weights, to keep
+    // the record 44 bytes.
+    uint32_t update_divisor_a = 1, update_divisor_b = 1;
     bool regular() const { return wing[0] >= 0; }
     uint32_t taps_begin() const { return regular() ? 0 : static_cast<uint32_t>(wing[1]); }
     uint32_t taps_end() const { return regular() ? 0 : static_cast<uint32_t>(wing[2]); }
-    double update_a() const { return update_weight(valence_a); }
-    double update_b() const { return update_weight(valence_b); }
+    double update_a() const { return update_weight(update_divisor_a); }
+    double update_b() const { return update_weight(update_divisor_b); }
   };
-  // kUpdateWeight / valence, looked up for the common valences (the same
-  // values as the division).
-  static double update_weight(uint32_t valence) {
-    return valence < kUpdateWeights.size() ? kUpdateWeights[valence] : kUpdateWeight / valence;
+  // kUpdateWeight / divisor (0 for a divisor of 0), looked up for the common
+  // divisors (the same values as the division).
+  static double update_weight(uint32_t divisor) {
+    return divisor < kUpdateWeights.size() ? kUpdateWeights[divisor] : kUpdateWeight / divisor;
   }
   // The odd vertices of level j (1 <= j <= levels(); empty beyond max_level).
   const Odd* odd_begin(int32_t level) const;
@@ -88,7 +106,7 @@ class LiftingPlan {
   int32_t base_vertex_count_ = 0;
   int32_t vertex_count_ = 0;
   static constexpr std::array<double, 32> kUpdateWeights = [] {
-    std::array<double, 32> w{};
+    std::array<double, 32> w{};  // w[0] = 0: a divisor of 0 is no update
     for (size_t k = 1; k < w.size(); ++k) w[k] = kUpdateWeight / static_cast<double>(k);
     return w;
   }();
@@ -97,6 +115,13 @@ class LiftingPlan {
   std::vector<uint32_t> level_begin_;   // odds of level j: [level_begin_[j-1], level_begin_[j])
   std::vector<Tap> taps_;
 };
+
+// The crease edges of the level-`level` mesh of `hierarchy` (levels beyond
+// max_level: the finest mesh's) given its base creases, as LiftingPlan::build
+// works them out (wavelet/README.md, "Creases"): (a, b) with a < b, sorted.
+// Fails as build does on a bad base list.
+StatusOr<std::vector<std::array<int32_t, 2>>> level_crease_edges(
+    const TriangleHierarchy& hierarchy, const std::vector<std::array<int32_t, 2>>& base_creases, int32_t level);
 
 struct WaveletCoefficients {
   // Per base vertex (ids 0 .. base_vertex_count - 1): its level-0

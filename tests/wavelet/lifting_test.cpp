@@ -13,6 +13,7 @@
 
 #include "format/mesh.h"
 #include "tests/test_util.h"
+#include "tests/wavelet/hierarchy_helpers.h"
 #include "wavelet/butterfly_stencil.h"
 
 namespace srcodec {
@@ -22,44 +23,11 @@ using Eigen::Vector3d;
 using Positions = std::vector<Vector3d>;
 using Triangles = std::vector<std::array<int32_t, 3>>;
 
-TriangleHierarchy make_hierarchy(const TriangleMesh& base) {
-  auto h = TriangleHierarchy::create(static_cast<int32_t>(base.positions.size()), base.triangles);
-  EXPECT_TRUE(h.ok()) << h.status().message();
-  return std::move(h).value();
-}
-
-void refine_uniform(TriangleHierarchy& h, int32_t levels) {
-  for (int32_t level = 0; level < levels; ++level) {
-    const size_t count = h.nodes().size();
-    for (size_t i = 0; i < count; ++i)
-      if (h.nodes()[i].level == level && h.nodes()[i].first_child < 0) h.split(static_cast<int32_t>(i));
-  }
-}
-
-// Random splits of leaves above `max_level`: the balancing and green closure
-// make the level meshes irregular.
-void refine_random(TriangleHierarchy& h, int32_t max_level, int splits, std::mt19937& rng) {
-  for (int s = 0; s < splits; ++s) {
-    std::vector<int32_t> leaves;
-    for (size_t i = 0; i < h.nodes().size(); ++i)
-      if (h.nodes()[i].first_child < 0 && h.nodes()[i].level < max_level) leaves.push_back(static_cast<int32_t>(i));
-    if (leaves.empty()) return;
-    h.split(leaves[rng() % leaves.size()]);
-  }
-}
-
-// Base positions, then every new vertex (ids grow after its parents') at its
-// parent edge's midpoint plus noise of size `noise`.
-Positions place(const TriangleHierarchy& h, const Positions& base, double noise, std::mt19937& rng) {
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  Positions x(base);
-  x.resize(h.vertex_count());
-  for (int32_t v = h.base_vertex_count(); v < h.vertex_count(); ++v) {
-    const auto e = h.parent_edge(v);
-    x[v] = 0.5 * (x[e[0]] + x[e[1]]) + noise * Vector3d(u(rng), u(rng), u(rng));
-  }
-  return x;
-}
+using test::make_hierarchy;
+using test::noisy_base;
+using test::place;
+using test::refine_random;
+using test::refine_uniform;
 
 LiftingPlan make_plan(const TriangleHierarchy& h) {
   auto plan = LiftingPlan::build(h, h.max_level());
@@ -121,13 +89,6 @@ std::set<int32_t> valences(const Triangles& tris, int32_t vertex_count) {
   std::set<int32_t> out;
   for (const auto& r : ring) out.insert(static_cast<int32_t>(r.size()));
   return out;
-}
-
-Positions noisy_base(const TriangleMesh& m, double noise, std::mt19937& rng) {
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  Positions p = m.positions;
-  for (auto& v : p) v += noise * Vector3d(u(rng), u(rng), u(rng));
-  return p;
 }
 
 // --- 1. Perfect reconstruction ---------------------------------------------
@@ -305,7 +266,8 @@ TEST(LiftingPredict, ValenceFiveEdgeMatchesExtraordinaryRule) {
   refine_uniform(h, 1);
   std::mt19937 rng(8);
   const LiftingPlan plan = make_plan(h);
-  const Positions x = inverse_lifting(plan, noisy_base(ico, 0.1, rng), Positions(h.vertex_count(), Vector3d::Zero()), 1);
+  const Positions zero(h.vertex_count(), Vector3d::Zero());
+  const Positions x = inverse_lifting(plan, noisy_base(ico, 0.1, rng), zero, 1);
   const auto third = third_corners(ico.triangles);
   auto k_rule = [&](int32_t e, int32_t o) {  // Zorin et al. 1996, K = 5
     constexpr double kPi = 3.14159265358979323846;
