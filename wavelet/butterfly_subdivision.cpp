@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <string>
 
+#include "format/semi_regular/creases.h"
 #include "format/semi_regular/hierarchy.h"
 #include "wavelet/lifting.h"
 
@@ -25,7 +26,7 @@ StatusOr<ButterflySubdivision> butterfly_subdivide(const TriangleMesh& mesh, int
   }
   SRCODEC_ASSIGN_OR_RETURN(const LiftingPlan plan, LiftingPlan::build(hierarchy, steps, crease_edges));
   ButterflySubdivision out;
-  SRCODEC_ASSIGN_OR_RETURN(out.crease_edges, level_crease_edges(hierarchy, crease_edges, steps));
+  out.crease_edges = crease_edges_up_to(hierarchy, crease_edges, steps);  // checked by the plan's build
   const std::vector<Eigen::Vector3d> zero(static_cast<size_t>(hierarchy.vertex_count()), Eigen::Vector3d::Zero());
   out.mesh.positions = inverse_lifting(plan, mesh.positions, zero, steps);
   out.mesh.triangles = hierarchy.level_triangles(steps);

@@ -20,6 +20,7 @@
 #include <Eigen/Geometry>
 
 #include "format/in_halves.h"
+#include "format/semi_regular/creases.h"
 #include "wavelet/butterfly_stencil.h"
 
 namespace srcodec {
@@ -142,36 +143,6 @@ Status check_base_creases(const TriangleHierarchy& h, const Edges& creases) {
   return ok_status();
 }
 
-// The crease edges of the level-j mesh from those of level j-1 (sorted
-// pairs a < b) and level j's odd vertices [odd_begin, odd_end): a crease
-// split by an odd vertex v gives its halves (a, v) and (v, b), one left
-// unsplit (adaptive refinement) stays. Edges between odd vertices and green
-// closure edges lie inside the split triangles, never on a crease.
-Edges refined_creases(const Edges& creases, const TriangleHierarchy& h, const int32_t* odd_begin,
-                      const int32_t* odd_end) {
-  std::vector<int32_t> split(creases.size(), -1);
-  for (const int32_t* v = odd_begin; v != odd_end; ++v) {
-    const auto [a, b] = h.parent_edge(*v);
-    const std::array<int32_t, 2> key{std::min(a, b), std::max(a, b)};
-    const auto it = std::lower_bound(creases.begin(), creases.end(), key);
-    if (it != creases.end() && *it == key) split[static_cast<size_t>(it - creases.begin())] = *v;
-  }
-  Edges out;
-  out.reserve(2 * creases.size());
-  for (size_t i = 0; i < creases.size(); ++i) {
-    const auto [a, b] = creases[i];
-    const int32_t v = split[i];
-    if (v < 0) {
-      out.push_back(creases[i]);
-      continue;
-    }
-    out.push_back({std::min(a, v), std::max(a, v)});
-    out.push_back({std::min(v, b), std::max(v, b)});
-  }
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
 // The rules of one level mesh as the plan build asks for them: the plain
 // Butterfly's, or with creases (README, "Creases").
 struct PlainRules {
@@ -287,21 +258,11 @@ StatusOr<LiftingPlan> LiftingPlan::build(const TriangleHierarchy& hierarchy, int
       added = add_odds(rules, mesh_vertices, hierarchy, level_odd, count, j, &plan.odds_, &plan.taps_);
     }
     SRCODEC_RETURN_IF_ERROR(added);
-    if (!creases.empty()) creases = refined_creases(creases, hierarchy, odd.data() + first, odd.data() + last);
+    if (!creases.empty()) creases = refined_crease_edges(creases, hierarchy, odd.data() + first, odd.data() + last);
   }
   return plan;
 }
 
-StatusOr<Edges> level_crease_edges(const TriangleHierarchy& hierarchy, const Edges& base_creases, int32_t level) {
-  SRCODEC_RETURN_IF_ERROR(check_base_creases(hierarchy, base_creases));
-  Edges creases = base_creases;
-  const int32_t last = std::clamp(level, 0, hierarchy.max_level());
-  std::vector<uint32_t> level_begin;
-  const std::vector<int32_t> odd = odd_vertices_by_level(hierarchy, last, &level_begin);
-  for (int32_t j = 1; j <= last && !creases.empty(); ++j)
-    creases = refined_creases(creases, hierarchy, odd.data() + level_begin[j - 1], odd.data() + level_begin[j]);
-  return creases;
-}
 
 bool LiftingPlan::covers_every_vertex(int32_t level) const {
   size_t covered = static_cast<size_t>(base_vertex_count_);

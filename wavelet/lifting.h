@@ -116,13 +116,6 @@ class LiftingPlan {
   std::vector<Tap> taps_;
 };
 
-// The crease edges of the level-`level` mesh of `hierarchy` (levels beyond
-// max_level: the finest mesh's) given its base creases, as LiftingPlan::build
-// works them out (wavelet/README.md, "Creases"): (a, b) with a < b, sorted.
-// Fails as build does on a bad base list.
-StatusOr<std::vector<std::array<int32_t, 2>>> level_crease_edges(
-    const TriangleHierarchy& hierarchy, const std::vector<std::array<int32_t, 2>>& base_creases, int32_t level);
-
 struct WaveletCoefficients {
   // Per base vertex (ids 0 .. base_vertex_count - 1): its level-0
   // approximation after all update steps, world coordinates.

@@ -14,11 +14,21 @@
 
 namespace srcodec {
 
+// The crease edges of the level-j mesh from those of level j - 1 (`creases`,
+// a < b, sorted) and level j's vertices [begin, end): a crease split by a
+// vertex v gives its halves (a, v) and (v, b), one left unsplit (adaptive
+// refinement) stays. Edges between new vertices and green closure edges
+// lie inside the split triangles, never on a crease.
+std::vector<std::array<int32_t, 2>> refined_crease_edges(const std::vector<std::array<int32_t, 2>>& creases,
+                                                         const TriangleHierarchy& hierarchy, const int32_t* begin,
+                                                         const int32_t* end);
+
 // The crease edges of the mesh of level `level` of `hierarchy`
 // (level_triangles(level); a < b, sorted, unique): the base creases, each
 // replaced by its halves wherever a vertex of level <= `level` splits it.
-// An adaptive level keeps the coarser crease edges it does not split.
-// Base creases must be (a < b) pairs of base vertices.
+// An adaptive level keeps the coarser crease edges it does not split;
+// levels beyond max_level give the finest mesh's. Base creases must be
+// (a < b) pairs of base vertices, sorted (LiftingPlan::build checks them).
 std::vector<std::array<int32_t, 2>> crease_edges_up_to(const TriangleHierarchy& hierarchy,
                                                        const std::vector<std::array<int32_t, 2>>& base_creases,
                                                        int32_t level);
