@@ -12,6 +12,7 @@
 
 #include "remesh/adjacency.h"
 #include "remesh/openmesh_types.h"
+#include "wavelet/butterfly_subdivision.h"
 
 namespace srcodec {
 namespace {
@@ -116,6 +117,15 @@ StatusOr<TriangleMesh> oversample(const TriangleMesh& mesh, OversampleScheme sch
 StatusOr<TriangleMesh> oversample(const TriangleMesh& mesh, OversampleScheme scheme, int steps,
                                   std::vector<std::array<int32_t, 2>>* creases) {
   if (!creases || creases->empty()) return oversample(mesh, scheme, steps);
+  if (scheme == OversampleScheme::kButterfly) {
+    // The crease rules keep the creases sharp and their sides flat where they
+    // were; OpenMesh's Butterfly would round them off with ripples.
+    if (steps < 0 || steps > 3)
+      return invalid_argument("oversample: " + std::to_string(steps) + " steps asked; use 0 to 3");
+    SRCODEC_ASSIGN_OR_RETURN(ButterflySubdivision fine, butterfly_subdivide(mesh, steps, *creases));
+    *creases = std::move(fine.crease_edges);
+    return std::move(fine.mesh);
+  }
   // One step at a time: every scheme keeps the old vertices' numbers and
   // puts one new vertex on each old edge, the only new vertex both its ends
   // are joined to, so each crease edge's halves are found by adjacency.

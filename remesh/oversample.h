@@ -36,8 +36,10 @@ StatusOr<OversampleScheme> parse_oversample_scheme(const std::string& name, cons
 // a manifold.
 StatusOr<TriangleMesh> oversample(const TriangleMesh& mesh, OversampleScheme scheme, int steps);
 
-// The same, carrying `creases` (edges (a, b) of `mesh`, a < b) through: on
-// return each is replaced by the 2^steps edges that subdivide it, sorted.
+// The same, carrying `creases` (edges (a, b) of `mesh`, a < b, sorted)
+// through: on return each is replaced by the 2^steps edges that subdivide
+// it, sorted. Butterfly then uses the crease rules of the codec's own
+// stencils (wavelet/butterfly_subdivision.h), which keep creases sharp.
 StatusOr<TriangleMesh> oversample(const TriangleMesh& mesh, OversampleScheme scheme, int steps,
                                   std::vector<std::array<int32_t, 2>>* creases);
 
