@@ -276,11 +276,6 @@ TEST(SrmCodec, SameInputSameBytes) {
   EXPECT_EQ(encode_srm(c.srm, c.input).value().bytes, encode_srm(c.srm, c.input).value().bytes);
 }
 
-}  // namespace
-}  // namespace srcodec
-
-namespace srcodec {
-namespace {
 
 TEST(SrmCodec, RateControlledFileDecodesLikeThePrefixWithAsManySegmentBytes) {
   const Case c = make_case(3, true, 12);
@@ -297,11 +292,6 @@ TEST(SrmCodec, RateControlledFileDecodesLikeThePrefixWithAsManySegmentBytes) {
   }
 }
 
-}  // namespace
-}  // namespace srcodec
-
-namespace srcodec {
-namespace {
 
 // Checksums catch accidents, not malice: chunks of random bytes with valid
 // checksums must still give an error or a mesh, never a crash, a hang or an
@@ -343,11 +333,6 @@ TEST(SrmCodec, HostileChunksWithValidChecksumsAreSafe) {
   EXPECT_GT(decoded, 0);  // random coefficient bytes are still a valid (wrong) stream
 }
 
-}  // namespace
-}  // namespace srcodec
-
-namespace srcodec {
-namespace {
 
 // The sphere case with creases: every third of its 30 base edges (sorted), in
 // the remesher's numbering.
@@ -573,11 +558,6 @@ TEST(SrmCodecCreases, RateControlKeepsTheCreases) {
   EXPECT_EQ(decode_bytes(small)->crease_edges, full.crease_edges);
 }
 
-}  // namespace
-}  // namespace srcodec
-
-namespace srcodec {
-namespace {
 
 // tests/data/creases_v3.srm: the sphere case with creases, cut to 1500 bytes
 // by rate control; the decoder's tests and the fuzzer's seeds use it (the

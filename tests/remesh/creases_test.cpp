@@ -32,6 +32,17 @@ bool on_cube_edge(const Eigen::Vector3d& p, double tolerance = 1e-9) {
 
 bool is_cube_corner(const Eigen::Vector3d& p) { return (p.cwiseAbs().array() > 1.0 - 1e-9).count() == 3; }
 
+// A uniform remesh keeping creases, on the input's own vertices.
+RemeshOptions crease_options(int levels, size_t base_vertices) {
+  RemeshOptions o;
+  o.levels = levels;
+  o.base_vertices = base_vertices;
+  o.uniform = true;
+  o.oversample = 0;
+  o.features = true;
+  return o;
+}
+
 // The cube's creases as the remesher gives them to the base mesh.
 BaseMeshCreases cube_creases(const TriangleMesh& cube) {
   const Features f = detect_features(cube);
@@ -167,12 +178,7 @@ TEST(Creases, BaseMeshRefusesCreasesItCannotFollow) {
 
 TEST(Creases, RemeshKeepsEveryCreaseVertexOnTheCubesEdges) {
   const TriangleMesh cube = test::grid_cube(32);
-  RemeshOptions o;
-  o.levels = 3;
-  o.base_vertices = 40;
-  o.uniform = true;
-  o.oversample = 0;
-  o.features = true;
+  RemeshOptions o = crease_options(3, 40);
   RemeshReport report;
   auto srm = remesh(cube, o, &report);
   ASSERT_TRUE(srm.ok()) << srm.status().message();
@@ -215,12 +221,7 @@ TEST(Creases, CreaseRunningIntoTheBoundaryStaysOnTheFold) {
   const int n = 48;
   g.patch(n, [](double u, double v) { return Eigen::Vector3d(-u, v, 0); });
   g.patch(n, [](double u, double v) { return Eigen::Vector3d(0, u, v); });
-  RemeshOptions o;
-  o.levels = 2;
-  o.base_vertices = 30;
-  o.uniform = true;
-  o.oversample = 0;
-  o.features = true;
+  RemeshOptions o = crease_options(2, 30);
   auto srm = remesh(g.mesh, o);
   ASSERT_TRUE(srm.ok()) << srm.status().message();
   const std::vector<Edge> creases = crease_edges_up_to(srm->hierarchy, srm->crease_edges, srm->levels);
@@ -245,14 +246,10 @@ TEST(Creases, NoisySphereHasNoCreasesToKeep) {
     state = state * 6364136223846793005ULL + 1442695040888963407ULL;
     p *= 1.0 + 0.012 * (static_cast<double>(state >> 11) / 9007199254740992.0 - 0.5);
   }
-  RemeshOptions o;
-  o.levels = 2;
-  o.base_vertices = 40;
-  o.uniform = true;
-  o.oversample = 0;
-  auto plain = remesh(sphere, o);
-  o.features = true;
+  RemeshOptions o = crease_options(2, 40);
   auto with = remesh(sphere, o);
+  o.features = false;
+  auto plain = remesh(sphere, o);
   ASSERT_TRUE(plain.ok() && with.ok());
   EXPECT_TRUE(with->crease_edges.empty());
   EXPECT_EQ(with->positions, plain->positions);

@@ -11,6 +11,7 @@
 
 #include "format/mesh.h"
 #include "format/semi_regular/hierarchy.h"
+#include "wavelet/lifting.h"
 
 namespace srcodec::test {
 
@@ -59,6 +60,26 @@ inline std::vector<Eigen::Vector3d> place(const TriangleHierarchy& h, const std:
     x[v] = 0.5 * (x[e[0]] + x[e[1]]) + noise * Eigen::Vector3d(u(rng), u(rng), u(rng));
   }
   return x;
+}
+
+// The mesh `plan`'s prediction makes from `base` (the inverse transform with
+// every detail zero), and what the forward transform gives back for it: its
+// largest detail and base change, over the mesh's bounding-box diagonal.
+struct PredictedMesh {
+  std::vector<Eigen::Vector3d> x;
+  double diagonal = 0.0;
+  double worst_detail = 0.0, worst_base = 0.0;  // relative to the diagonal
+};
+inline PredictedMesh predicted_mesh(const LiftingPlan& plan, const std::vector<Eigen::Vector3d>& base) {
+  PredictedMesh out;
+  const std::vector<Eigen::Vector3d> zero(static_cast<size_t>(plan.vertex_count()), Eigen::Vector3d::Zero());
+  out.x = inverse_lifting(plan, base, zero, plan.levels());
+  out.diagonal = bounding_box_diagonal(out.x);
+  const WaveletCoefficients c = forward_lifting(plan, out.x);
+  for (const auto& d : c.detail) out.worst_detail = std::max(out.worst_detail, d.norm() / out.diagonal);
+  for (size_t i = 0; i < base.size(); ++i)
+    out.worst_base = std::max(out.worst_base, (c.base[i] - base[i]).norm() / out.diagonal);
+  return out;
 }
 
 }  // namespace srcodec::test
