@@ -4,6 +4,8 @@
 #include <cmath>
 #include <vector>
 
+#include "remesh/geometry.h"
+
 namespace srcodec {
 
 double base_edge_length(double area, size_t vertices) {
@@ -15,8 +17,7 @@ namespace {
 
 double surface_area(const TriangleMesh& mesh) {
   double area = 0.0;
-  for (const auto& t : mesh.triangles)
-    area += 0.5 * (mesh.positions[t[1]] - mesh.positions[t[0]]).cross(mesh.positions[t[2]] - mesh.positions[t[0]]).norm();
+  for (const auto& t : mesh.triangles) area += triangle_area(mesh.positions, t);
   return area;
 }
 

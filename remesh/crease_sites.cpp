@@ -54,7 +54,8 @@ void Refiner::build_curves() {
       const int32_t a = faces[f][c], b = faces[f][(c + 1) % 3];
       const std::array<int32_t, 2> edge{std::min(a, b), std::max(a, b)};
       if (std::binary_search(base_.crease_edges.begin(), base_.crease_edges.end(), edge)) continue;
-      sides.push_back({(static_cast<uint64_t>(edge[0]) << 32) | static_cast<uint32_t>(edge[1]), static_cast<int32_t>(f)});
+      const uint64_t key = (static_cast<uint64_t>(edge[0]) << 32) | static_cast<uint32_t>(edge[1]);
+      sides.push_back({key, static_cast<int32_t>(f)});
     }
   std::sort(sides.begin(), sides.end());
   UnionFind patches(faces.size());
