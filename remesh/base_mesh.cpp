@@ -294,7 +294,6 @@ class Collapser {
   // On the boundary or a crease: such vertices shrink to one per run of a
   // cell (phase 2 of build_base_mesh).
   bool on_sharp_curve(int32_t v) const { return on_boundary(v) || crease_degree_[v] > 0; }
-  bool fixed(int32_t v) const { return fixed_[v] != 0; }
 
   // Tries to remove v by collapsing it into one of its neighbours allowed by
   // `rule`, in order of preference. True when it was removed.
