@@ -86,10 +86,12 @@ struct RemeshOptions {
   // rounder (remesh/relax_slivers.h; ours): slivers are where coding error
   // turns triangles over.
   bool relax_slivers = true;
-  // Keep the input's creases (remesh/features.h) as chains of base edges,
-  // their corners and ends as base vertices, and record them in
-  // SemiRegularMesh::crease_edges. The later stages do not yet keep the
-  // vertices refining those edges on the creases. Off by default until they do.
+  // Keep the input's creases (remesh/features.h, remesh/base_creases.h) as
+  // chains of base edges, their corners and ends as base vertices, and the
+  // vertices refining those edges on the creases; record them in
+  // SemiRegularMesh::crease_edges for the wavelet's crease rules. Off by
+  // default: on inputs with few creases it moves the rate-distortion both
+  // ways (docs/remesh_design.md, "Creases").
   bool features = false;
   RemeshProgressCallback progress;  // after each step (remesh/progress.h), may be empty
 };
