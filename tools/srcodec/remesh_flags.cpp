@@ -44,8 +44,9 @@ void add_remesh_flags(Subcommand& cmd, RemeshFlags& f) {
              "(ours: keeps the input's facets)")
       .show_default();
   cmd.flag("--features", f.features,
-           "Keep the input's sharp creases: base edges along them, their corners as base vertices, the vertices "
-           "refining them on them (off by default while the coding's crease rules are being completed)");
+           "Keep the input's sharp creases (CAD parts): base edges along them, their corners as base vertices, "
+           "the file records them and the coding predicts along them (off by default: on meshes with few creases "
+           "it moves the rate-distortion both ways; docs/remesh_design.md, Creases)");
 }
 
 void add_experiment_flags(Subcommand& cmd, RemeshFlags& f) {
