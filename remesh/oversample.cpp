@@ -116,12 +116,12 @@ StatusOr<TriangleMesh> oversample(const TriangleMesh& mesh, OversampleScheme sch
 
 StatusOr<TriangleMesh> oversample(const TriangleMesh& mesh, OversampleScheme scheme, int steps,
                                   std::vector<std::array<int32_t, 2>>* creases) {
-  if (!creases || creases->empty()) return oversample(mesh, scheme, steps);
+  if (!creases || creases->empty() || steps == 0) return oversample(mesh, scheme, steps);
+  if (steps < 0 || steps > 3)
+    return invalid_argument("oversample: " + std::to_string(steps) + " steps asked; use 0 to 3");
   if (scheme == OversampleScheme::kButterfly) {
     // The crease rules keep the creases sharp and their sides flat where they
     // were; OpenMesh's Butterfly would round them off with ripples.
-    if (steps < 0 || steps > 3)
-      return invalid_argument("oversample: " + std::to_string(steps) + " steps asked; use 0 to 3");
     SRCODEC_ASSIGN_OR_RETURN(ButterflySubdivision fine, butterfly_subdivide(mesh, steps, *creases));
     *creases = std::move(fine.crease_edges);
     return std::move(fine.mesh);
