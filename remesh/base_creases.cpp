@@ -8,18 +8,7 @@
 
 namespace srcodec {
 
-double base_edge_length(double area, size_t vertices) {
-  if (vertices == 0 || !(area > 0.0)) return 0.0;
-  return std::sqrt(2.0 * area / (std::sqrt(3.0) * static_cast<double>(vertices)));
-}
-
 namespace {
-
-double surface_area(const TriangleMesh& mesh) {
-  double area = 0.0;
-  for (const auto& t : mesh.triangles) area += triangle_area(mesh.positions, t);
-  return area;
-}
 
 double curve_length(const TriangleMesh& mesh, const FeatureCurve& curve) {
   double length = 0.0;
@@ -28,19 +17,10 @@ double curve_length(const TriangleMesh& mesh, const FeatureCurve& curve) {
   return length;
 }
 
-// The kind of feature edge a-b (features.edges is sorted by (a, b)).
-FeatureKind kind_of(const Features& features, int32_t a, int32_t b) {
-  const FeatureEdge key{std::min(a, b), std::max(a, b), FeatureKind::kCrease};
-  const auto it = std::lower_bound(features.edges.begin(), features.edges.end(), key, [](const auto& x, const auto& y) {
-    return x.a != y.a ? x.a < y.a : x.b < y.b;
-  });
-  return it != features.edges.end() && it->a == key.a && it->b == key.b ? it->kind : FeatureKind::kBoundary;
-}
-
 }  // namespace
 
 BaseMeshCreases base_creases(const TriangleMesh& mesh, const Features& features, const BaseCreaseOptions& options) {
-  const double shortest = options.min_base_edges * base_edge_length(surface_area(mesh), options.base_vertices);
+  const double shortest = options.min_base_edges * equilateral_edge_length(mesh_area(mesh), options.base_vertices);
   const size_t n = mesh.positions.size();
   std::vector<int32_t> degree(n, 0);
   std::vector<char> on_boundary(n, 0);
@@ -50,7 +30,8 @@ BaseMeshCreases base_creases(const TriangleMesh& mesh, const Features& features,
   for (const FeatureCurve& curve : features.curves) {
     const std::vector<int32_t>& v = curve.vertices;
     if (v.size() < 2 || curve_length(mesh, curve) < shortest) continue;
-    if (kind_of(features, v[0], v[1]) != FeatureKind::kCrease) continue;
+    const FeatureEdge* first = features.find(v[0], v[1]);
+    if (!first || first->kind != FeatureKind::kCrease) continue;
     for (size_t k = 1; k < v.size(); ++k) {
       out.edges.push_back({std::min(v[k - 1], v[k]), std::max(v[k - 1], v[k])});
       ++degree[v[k - 1]];

@@ -23,10 +23,6 @@ struct BaseCreaseOptions {
   size_t base_vertices = 0;
 };
 
-// The mean edge length of a closed mesh of `vertices` vertices over `area`
-// in equilateral triangles (2 per vertex).
-double base_edge_length(double area, size_t vertices);
-
 // The creases of `features` (detected on `mesh`) as build_base_mesh takes
 // them: the crease edges of the curves kept, and fixed the features'
 // corners and ends on them and every vertex not on exactly two kept crease

@@ -11,10 +11,7 @@
 namespace srcodec {
 
 double boundary_tip_reach(const TriangleMesh& mesh, size_t sites) {
-  double area = 0.0;
-  for (const auto& t : mesh.triangles) area += triangle_area(mesh.positions, t);
-  if (sites == 0 || !(area > 0.0)) return 0.0;
-  return 0.5 * std::sqrt(4.0 / std::sqrt(3.0) * area / (2.0 * static_cast<double>(sites)));
+  return 0.5 * equilateral_edge_length(mesh_area(mesh), sites);
 }
 
 size_t add_boundary_tip_sites(const TriangleMesh& mesh, const BoundaryTipOptions& options, VoronoiCells* cells) {

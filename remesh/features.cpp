@@ -232,13 +232,13 @@ std::vector<FeatureCurve> chain_feature_curves(size_t vertex_count, const std::v
   return chain(feature_star(vertex_count, edges), edges, stops);
 }
 
-bool Features::is_feature(int32_t a, int32_t b) const {
+const FeatureEdge* Features::find(int32_t a, int32_t b) const {
   if (a > b) std::swap(a, b);
   const auto it = std::lower_bound(edges.begin(), edges.end(), std::make_pair(a, b),
                                    [](const FeatureEdge& e, const std::pair<int32_t, int32_t>& k) {
                                      return std::make_pair(e.a, e.b) < k;
                                    });
-  return it != edges.end() && it->a == a && it->b == b;
+  return it != edges.end() && it->a == a && it->b == b ? &*it : nullptr;
 }
 
 Features detect_features(const TriangleMesh& mesh, const FeatureOptions& options) {

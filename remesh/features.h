@@ -63,8 +63,9 @@ struct Features {
   // Where a crease stops inside the surface (one feature edge); ascending.
   std::vector<int32_t> ends;
   std::vector<FeatureCurve> curves;  // every feature edge on exactly one
-  // Whether a-b is a feature edge (either order).
-  bool is_feature(int32_t a, int32_t b) const;
+  // The feature edge a-b (either order), or null.
+  const FeatureEdge* find(int32_t a, int32_t b) const;
+  bool is_feature(int32_t a, int32_t b) const { return find(a, b) != nullptr; }
 };
 
 // Feature edges (indices below vertex_count) walked into curves: from every

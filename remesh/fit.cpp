@@ -242,8 +242,7 @@ FitReport fit_to_surface(const TriangleMesh& input, const TriangleMesh& sides,
       own_search = std::make_unique<NearestTriangle>(input.positions, input.triangles, /*exact_search=*/true);
       to_input = own_search.get();
     }
-    double area = 0.0;
-    for (const auto& t : input.triangles) area += triangle_area(input.positions, t);
+    const double area = mesh_area(input);
     density = area > 0.0 ? static_cast<double>(samples.size()) / area : 0.0;
   }
   std::vector<std::array<double, 4>> offset_to_input(both_ways ? fine.size() : 0);

@@ -109,6 +109,17 @@ double triangle_area(const std::vector<Eigen::Vector3d>& p, const std::array<int
   return 0.5 * triangle_normal(p, t).norm();
 }
 
+double mesh_area(const TriangleMesh& mesh) {
+  double area = 0.0;
+  for (const auto& t : mesh.triangles) area += triangle_area(mesh.positions, t);
+  return area;
+}
+
+double equilateral_edge_length(double area, size_t vertices) {
+  if (vertices == 0 || !(area > 0.0)) return 0.0;
+  return std::sqrt(4.0 / std::sqrt(3.0) * area / (2.0 * static_cast<double>(vertices)));
+}
+
 std::vector<Eigen::Vector3d> surface_samples(const TriangleMesh& mesh, size_t count, uint64_t seed) {
   std::vector<double> cumulative(mesh.triangles.size());
   double total = 0.0;

@@ -52,6 +52,13 @@ double degrees_between(const Eigen::Vector3d& a, const Eigen::Vector3d& b);
 // The normal of triangle t of `p`, twice its area long; its area.
 Eigen::Vector3d triangle_normal(const std::vector<Eigen::Vector3d>& p, const std::array<int32_t, 3>& t);
 double triangle_area(const std::vector<Eigen::Vector3d>& p, const std::array<int32_t, 3>& t);
+// The sum of the areas of the mesh's triangles.
+double mesh_area(const TriangleMesh& mesh);
+// The edge length of equilateral triangles, two per vertex as on a closed
+// mesh, that cover `area` with `vertices` vertices: the mean edge of a mesh
+// of that many vertices over that area (a base mesh's, from its sites). 0
+// without vertices or area.
+double equilateral_edge_length(double area, size_t vertices);
 
 // Calls f with the centroid of each of the n x n sub-triangles of triangle
 // abc (those of a regular split of each edge into n), row by row.

@@ -14,6 +14,7 @@
 #include "remesh/base_creases.h"
 #include "remesh/base_mesh.h"
 #include "remesh/features.h"
+#include "remesh/geometry.h"
 #include "remesh/lbg_sites.h"
 #include "remesh/oversample.h"
 #include "remesh/remesher.h"
@@ -79,7 +80,7 @@ TEST(Creases, BaseFollowsCreasesNoShorterThanItsEdges) {
   const Features features = detect_features(cube);
   // Area 24: base edges of 40 vertices are 0.83 long, of 4 vertices 2.63,
   // longer than the cube's edges (2).
-  EXPECT_NEAR(base_edge_length(24.0, 4), std::sqrt(12.0 / std::sqrt(3.0)), 1e-12);
+  EXPECT_NEAR(equilateral_edge_length(24.0, 4), std::sqrt(12.0 / std::sqrt(3.0)), 1e-12);
   BaseCreaseOptions fine;
   fine.base_vertices = 40;
   const BaseMeshCreases kept = base_creases(cube, features, fine);
