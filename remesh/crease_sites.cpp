@@ -47,20 +47,14 @@ void Refiner::build_curves() {
 
   // The base faces' patches: faces joined across every base edge but the creases.
   const auto& faces = base_.mesh.triangles;
-  std::vector<std::pair<uint64_t, int32_t>> sides;  // (edge, face) for every face's three edges
-  sides.reserve(3 * faces.size());
+  const std::vector<std::array<int32_t, 3>> across = triangles_across(faces);
+  UnionFind patches(faces.size());
   for (size_t f = 0; f < faces.size(); ++f)
     for (int c = 0; c < 3; ++c) {
-      const int32_t a = faces[f][c], b = faces[f][(c + 1) % 3];
-      const std::array<int32_t, 2> edge{std::min(a, b), std::max(a, b)};
-      if (std::binary_search(base_.crease_edges.begin(), base_.crease_edges.end(), edge)) continue;
-      const uint64_t key = (static_cast<uint64_t>(edge[0]) << 32) | static_cast<uint32_t>(edge[1]);
-      sides.push_back({key, static_cast<int32_t>(f)});
+      const auto [a, b] = std::minmax(faces[f][c], faces[f][(c + 1) % 3]);
+      const bool crease = std::binary_search(base_.crease_edges.begin(), base_.crease_edges.end(), std::array{a, b});
+      if (across[f][c] >= 0 && !crease) patches.unite(f, static_cast<size_t>(across[f][c]));
     }
-  std::sort(sides.begin(), sides.end());
-  UnionFind patches(faces.size());
-  for (size_t k = 1; k < sides.size(); ++k)
-    if (sides[k].first == sides[k - 1].first) patches.unite(sides[k].second, sides[k - 1].second);
   face_patch_.resize(faces.size());
   for (size_t f = 0; f < faces.size(); ++f) face_patch_[f] = static_cast<int32_t>(patches.find(f));
 }
