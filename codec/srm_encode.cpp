@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
-#include <unordered_set>
 
 #include "codec/base_mesh_coder.h"
 #include "codec/bitplane.h"
@@ -22,31 +21,6 @@ constexpr int32_t kMaxQuantized = (1 << kSrmMaxPlane) - 1;
 double as_float(double v) { return static_cast<double>(static_cast<float>(v)); }
 
 double component(const Eigen::Vector3d& v, int c) { return v[c]; }
-
-std::string edge_text(const std::array<int32_t, 2>& e) {
-  return "(" + std::to_string(e[0]) + ", " + std::to_string(e[1]) + ")";
-}
-
-// The creases as SemiRegularMesh::crease_edges promises them: base edges,
-// a < b, sorted, no repeats (the wavelet and the crease coder rely on it).
-Status check_creases(const SemiRegularMesh& mesh) {
-  std::unordered_set<uint64_t> edges;  // lookups only
-  const auto key = [](int32_t a, int32_t b) {
-    return (static_cast<uint64_t>(static_cast<uint32_t>(std::min(a, b))) << 32) |
-           static_cast<uint32_t>(std::max(a, b));
-  };
-  for (const auto& t : mesh.base.triangles)
-    for (int k = 0; k < 3; ++k) edges.insert(key(t[k], t[(k + 1) % 3]));
-  for (size_t i = 0; i < mesh.crease_edges.size(); ++i) {
-    const std::array<int32_t, 2>& e = mesh.crease_edges[i];
-    if (e[0] >= e[1]) return invalid_argument("encode: crease edge " + edge_text(e) + " is not written with a < b");
-    if (i > 0 && !(mesh.crease_edges[i - 1] < e))
-      return invalid_argument("encode: crease edges are not sorted without repeats at " + edge_text(e));
-    if (e[0] < 0 || !edges.count(key(e[0], e[1])))
-      return invalid_argument("encode: crease edge " + edge_text(e) + " is not an edge of the base mesh");
-  }
-  return ok_status();
-}
 
 // The creases in the base mesh coder's vertex ids (the file's and the
 // decoder's), sorted again.
@@ -77,7 +51,6 @@ StatusOr<EncodedSrm> encode_srm(const SemiRegularMesh& mesh, const TriangleMesh&
   if (levels < 0 || levels > kSrmMaxLevels)
     return invalid_argument("encode: " + std::to_string(levels) + " levels; the format holds 0.." +
                             std::to_string(kSrmMaxLevels));
-  SRCODEC_RETURN_IF_ERROR(check_creases(mesh));
   SrmHeader h;
   h.input_vertices = input.positions.size();
   h.input_triangles = input.triangles.size();
@@ -101,6 +74,7 @@ StatusOr<EncodedSrm> encode_srm(const SemiRegularMesh& mesh, const TriangleMesh&
   // The base mesh carries the level-0 approximation (base vertices after the
   // update steps), not the base vertices' own positions: the transform on the
   // remesher's numbering gives it before the replay renumbers everything.
+  // The plan's build also checks the creases (base edges, a < b, sorted).
   StatusOr<LiftingPlan> original_plan = LiftingPlan::build(mesh.hierarchy, levels, mesh.crease_edges);
   if (!original_plan.ok()) return original_plan.status().with_context("encode: wavelet plan");
   const std::vector<Eigen::Vector3d> approximation = forward_lifting(original_plan.value(), mesh.positions).base;

@@ -128,13 +128,14 @@ Status check_base_creases(const TriangleHierarchy& h, const Edges& creases) {
   const int32_t n = h.base_vertex_count();
   for (size_t i = 0; i < creases.size(); ++i) {
     const auto [a, b] = creases[i];
-    if (a < 0 || b >= n || a >= b)
-      return invalid_argument("lifting: crease " + edge_text(creases[i]) + " (entry " + std::to_string(i) +
-                              ") is not a pair of base vertices a < b below " + std::to_string(n));
+    const std::string which = "lifting: crease " + edge_text(creases[i]) + " (entry " + std::to_string(i) + ")";
+    if (a >= b) return invalid_argument(which + " is not written with a < b");
+    if (a < 0 || b >= n)
+      return invalid_argument(which + " is not an edge of the base mesh: its vertices are not both base vertices, "
+                              "below " + std::to_string(n));
     if (i > 0 && !(creases[i - 1] < creases[i]))
-      return invalid_argument("lifting: crease " + edge_text(creases[i]) + " (entry " + std::to_string(i) +
-                              ") comes after " + edge_text(creases[i - 1]) +
-                              ": crease edges must be sorted, with no repeats");
+      return invalid_argument(which + " comes after " + edge_text(creases[i - 1]) +
+                              ": crease edges are not sorted, with no repeats");
   }
   SRCODEC_ASSIGN_OR_RETURN(const LevelMesh base, LevelMesh::build(h.level_triangles(0), n));
   for (const auto& e : creases)
