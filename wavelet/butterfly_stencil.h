@@ -64,15 +64,10 @@ class SharpEdges {
   // vertex of the mesh cut open along the creases.
   bool crease_vertex(int32_t v) const { return crease_vertex_[v] != 0; }
   bool crease(int32_t a, int32_t b) const {
-    for (uint32_t i = begin_[a]; i < begin_[a + 1]; ++i)
-      if (edges_[i].to == b) return edges_[i].crease;
-    return false;
+    const Edge* e = find(a, b);
+    return e && e->crease;
   }
-  bool sharp(int32_t a, int32_t b) const {
-    for (uint32_t i = begin_[a]; i < begin_[a + 1]; ++i)
-      if (edges_[i].to == b) return true;
-    return false;
-  }
+  bool sharp(int32_t a, int32_t b) const { return find(a, b) != nullptr; }
   // Number of sharp edges at v (a crease that is also a boundary edge counts once).
   int32_t degree(int32_t v) const { return static_cast<int32_t>(begin_[v + 1] - begin_[v]); }
   // The next vertex after p along the sharp curve through the sharp edge
@@ -89,6 +84,12 @@ class SharpEdges {
     int32_t to;
     bool crease;  // else a boundary edge
   };
+  // The sharp edge (a, b) among a's, or null.
+  const Edge* find(int32_t a, int32_t b) const {
+    for (uint32_t i = begin_[a]; i < begin_[a + 1]; ++i)
+      if (edges_[i].to == b) return &edges_[i];
+    return nullptr;
+  }
   std::vector<uint32_t> begin_;  // per vertex + 1: v's sharp edges are edges_[begin_[v] .. begin_[v + 1])
   std::vector<Edge> edges_;
   std::vector<uint8_t> crease_vertex_;

@@ -264,7 +264,6 @@ StatusOr<LiftingPlan> LiftingPlan::build(const TriangleHierarchy& hierarchy, int
   return plan;
 }
 
-
 bool LiftingPlan::covers_every_vertex(int32_t level) const {
   size_t covered = static_cast<size_t>(base_vertex_count_);
   for (int32_t j = 1; j <= level; ++j) covered += static_cast<size_t>(odd_end(j) - odd_begin(j));
