@@ -6,10 +6,7 @@
 #include <algorithm>
 #include <string>
 
-#include "codec/base_mesh_coder.h"
-#include "codec/crease_coder.h"
 #include "codec/srm_codec.h"
-#include "codec/srm_layout.h"
 #include "format/mesh_convert.h"
 #include "format/srm/srm_file.h"
 
@@ -40,16 +37,9 @@ Status check_options(const DecodeOptions& o) {
 // mesh's triangles. -1 when the two are not both whole or do not decode
 // (inspect reports, decode is the one to say what is wrong).
 int64_t crease_count(const SrmFile& f) {
-  const SrmHeader& h = f.header;
-  if (!h.has_creases) return 0;
+  if (!f.header.has_creases) return 0;
   if (!f.base.complete() || !f.creases.complete()) return -1;
-  if (!verify_chunk(f.base, false, "").ok() || !verify_chunk(f.creases, false, "").ok()) return -1;
-  const StatusOr<DecodedBaseMesh> base =
-      decode_base_mesh(f.base.bytes.data(), f.base.bytes.size(), grid_of(h), h.base_vertices, h.base_triangles);
-  if (!base.ok()) return -1;
-  const StatusOr<std::vector<std::array<int32_t, 2>>> creases =
-      decode_creases(base->triangles, static_cast<int32_t>(base->positions.size()), f.creases.bytes.data(),
-                     f.creases.bytes.size());
+  const StatusOr<std::vector<std::array<int32_t, 2>>> creases = decode_srm_creases(f);
   return creases.ok() ? static_cast<int64_t>(creases->size()) : -1;
 }
 

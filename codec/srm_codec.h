@@ -83,4 +83,9 @@ struct DecodedSrm {
 // the creases: the base mesh); a failed checksum is an error.
 StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const SrmDecodeOptions& options = {});
 
+// The crease edges of the file's base mesh (none for a file without
+// creases), as decode_srm reads them: the base mesh and crease chunks must be
+// whole and pass their checksums.
+StatusOr<std::vector<std::array<int32_t, 2>>> decode_srm_creases(const SrmFile& file);
+
 }  // namespace srcodec

@@ -264,6 +264,12 @@ class Reconstruction {
 
 }  // namespace
 
+StatusOr<std::vector<std::array<int32_t, 2>>> decode_srm_creases(const SrmFile& file) {
+  if (!file.header.has_creases) return std::vector<std::array<int32_t, 2>>{};
+  SRCODEC_ASSIGN_OR_RETURN(const DecodedBaseMesh base, decode_whole_base(file));
+  return decode_whole_creases(file, base);
+}
+
 StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const SrmDecodeOptions& options) {
   const SrmHeader& h = file.header;
   int level = options.level < 0 ? h.levels : std::min(options.level, h.levels);
