@@ -53,6 +53,8 @@ Status check_options(const EncodeOptions& o) {
       return invalid_argument("EncodeOptions::adaptivity: unknown value " +
                               std::to_string(static_cast<int>(o.adaptivity)));
   }
+  if (o.creases != Creases::kAuto && o.creases != Creases::kKeep && o.creases != Creases::kOff)
+    return invalid_argument("EncodeOptions::creases: unknown value " + std::to_string(static_cast<int>(o.creases)));
   SRCODEC_RETURN_IF_ERROR(check_rate(o.rate));
   SRCODEC_RETURN_IF_ERROR(check_range("tangential_factor", o.tangential_factor, 0.25, 64.0));
   SRCODEC_RETURN_IF_ERROR(check_range("base_bits", o.base_bits, 4, 24));
@@ -69,6 +71,9 @@ MeshEncodeOptions to_mesh_encode_options(const EncodeOptions& o) {
   r.threshold = o.adaptivity == Adaptivity::kVertexCount ? o.threshold : 0.0;
   r.max_loss_db = o.adaptivity == Adaptivity::kMeasuredError ? o.max_loss_db : 0.0;
   r.deepen_fraction = o.adaptivity == Adaptivity::kMeasuredError ? o.deepen_fraction : 0.0;
+  r.creases = o.creases == Creases::kKeep  ? CreaseMode::kKeep
+              : o.creases == Creases::kOff ? CreaseMode::kIgnore
+                                           : CreaseMode::kAuto;
   m.coding.tangential_factor = o.tangential_factor;
   m.coding.base_bits = o.base_bits;
   m.coding.raw_planes = o.raw_planes;

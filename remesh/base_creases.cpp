@@ -17,21 +17,41 @@ double curve_length(const TriangleMesh& mesh, const FeatureCurve& curve) {
   return length;
 }
 
+// The crease curves (not boundaries) at least `shortest` long.
+std::vector<const FeatureCurve*> followable(const TriangleMesh& mesh, const Features& features, double shortest) {
+  std::vector<const FeatureCurve*> out;
+  for (const FeatureCurve& curve : features.curves) {
+    const std::vector<int32_t>& v = curve.vertices;
+    if (v.size() < 2 || curve_length(mesh, curve) < shortest) continue;
+    const FeatureEdge* first = features.find(v[0], v[1]);
+    if (first && first->kind == FeatureKind::kCrease) out.push_back(&curve);
+  }
+  return out;
+}
+
 }  // namespace
+
+double crease_edge_share(const TriangleMesh& mesh, const Features& features, const BaseCreaseOptions& options) {
+  if (options.base_vertices == 0) return 0.0;
+  const double base_edge = equilateral_edge_length(mesh_area(mesh), options.base_vertices);
+  double length = 0.0;
+  for (const FeatureCurve* curve : followable(mesh, features, options.min_base_edges * base_edge))
+    length += curve_length(mesh, *curve);
+  // A closed mesh has about 3 edges per vertex (Euler).
+  return length / base_edge / (3.0 * static_cast<double>(options.base_vertices));
+}
 
 BaseMeshCreases base_creases(const TriangleMesh& mesh, const Features& features, const BaseCreaseOptions& options) {
   const double shortest = options.min_base_edges * equilateral_edge_length(mesh_area(mesh), options.base_vertices);
+  if (options.base_vertices > 0 && options.min_edge_share > 0.0 && crease_edge_share(mesh, features, options) < options.min_edge_share) return {};
   const size_t n = mesh.positions.size();
   std::vector<int32_t> degree(n, 0);
   std::vector<char> on_boundary(n, 0);
   for (const FeatureEdge& e : features.edges)
     if (e.kind == FeatureKind::kBoundary) on_boundary[e.a] = on_boundary[e.b] = 1;
   BaseMeshCreases out;
-  for (const FeatureCurve& curve : features.curves) {
-    const std::vector<int32_t>& v = curve.vertices;
-    if (v.size() < 2 || curve_length(mesh, curve) < shortest) continue;
-    const FeatureEdge* first = features.find(v[0], v[1]);
-    if (!first || first->kind != FeatureKind::kCrease) continue;
+  for (const FeatureCurve* curve : followable(mesh, features, shortest)) {
+    const std::vector<int32_t>& v = curve->vertices;
     for (size_t k = 1; k < v.size(); ++k) {
       out.edges.push_back({std::min(v[k - 1], v[k]), std::max(v[k - 1], v[k])});
       ++degree[v[k - 1]];

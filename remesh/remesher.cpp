@@ -205,7 +205,7 @@ class Remesher {
   const RemeshOptions& options_;
   RemeshReport& rep_;
   std::vector<ComponentMesh> parts_;
-  std::vector<BaseMeshCreases> creases_;  // per component, with RemeshOptions::features
+  std::vector<BaseMeshCreases> creases_;  // per component, as RemeshOptions::creases asks
   std::vector<size_t> share_;
   size_t base_total_ = 0;
   double finest_ = 0.0;
@@ -267,10 +267,13 @@ Status Remesher::split_and_oversample() {
   const auto start = std::chrono::steady_clock::now();
   creases_.assign(parts_.size(), BaseMeshCreases{});
   for (size_t c = 0; c < parts_.size(); ++c) {
-    if (options_.features) {
+    if (options_.creases != CreaseMode::kIgnore) {
       BaseCreaseOptions keep;
       keep.base_vertices = share_[c];
-      creases_[c] = base_creases(parts_[c].mesh, detect_features(parts_[c].mesh), keep);
+      keep.min_edge_share = options_.creases == CreaseMode::kAuto ? kAutoCreaseEdgeShare : 0.0;
+      const Features features = detect_features(parts_[c].mesh);
+      rep_.crease_edge_share = std::max(rep_.crease_edge_share, crease_edge_share(parts_[c].mesh, features, keep));
+      creases_[c] = base_creases(parts_[c].mesh, features, keep);
     }
     SRCODEC_ASSIGN_OR_RETURN(parts_[c].mesh,
                              oversample(parts_[c].mesh, options_.scheme, steps[c], &creases_[c].edges));

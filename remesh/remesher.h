@@ -23,6 +23,12 @@
 
 namespace srcodec {
 
+enum class CreaseMode {
+  kAuto,    // per component, where the creases kept take kAutoCreaseEdgeShare of its base's edges
+  kKeep,    // wherever a crease curve is long enough for the base to follow
+  kIgnore,  // never
+};
+
 struct RemeshOptions {
   int levels = 4;  // 0..12
   // `levels` is an upper bound, as when the user did not choose it: a mesh
@@ -86,13 +92,14 @@ struct RemeshOptions {
   // rounder (remesh/relax_slivers.h; ours): slivers are where coding error
   // turns triangles over.
   bool relax_slivers = true;
-  // Keep the input's creases (remesh/features.h, remesh/base_creases.h) as
-  // chains of base edges, their corners and ends as base vertices, and the
-  // vertices refining those edges on the creases; record them in
-  // SemiRegularMesh::crease_edges for the wavelet's crease rules. Off by
-  // default: on inputs with few creases it moves the rate-distortion both
-  // ways (docs/remesh_design.md, "Creases").
-  bool features = false;
+  // Whether to keep the input's creases (remesh/features.h,
+  // remesh/base_creases.h) as chains of base edges, their corners and ends
+  // as base vertices, and the vertices refining those edges on the creases;
+  // recorded in SemiRegularMesh::crease_edges for the wavelet's crease
+  // rules. By default only where they are a real share of the shape
+  // (kAutoCreaseEdgeShare): on inputs with a few creases, keeping them moves
+  // the rate-distortion both ways (docs/remesh_design.md, "Creases").
+  CreaseMode creases = CreaseMode::kAuto;
   RemeshProgressCallback progress;  // after each step (remesh/progress.h), may be empty
 };
 
@@ -103,8 +110,11 @@ struct RemeshReport {
   size_t oversampled_vertices = 0;
   size_t base_vertices = 0;       // including promoted ones
   size_t promoted_vertices = 0;   // non-sites the base mesh had to keep (see build_base_mesh)
-  size_t crease_vertices_kept = 0;  // of those, on creases (RemeshOptions::features)
-  size_t base_crease_edges = 0;     // base edges along the input's creases (RemeshOptions::features)
+  size_t crease_vertices_kept = 0;  // of those, on creases (RemeshOptions::creases)
+  size_t base_crease_edges = 0;     // base edges along the input's creases (RemeshOptions::creases)
+  // The most of its base's edges any component's creases would take
+  // (remesh/base_creases.h, crease_edge_share), kept or not; 0 with kIgnore.
+  double crease_edge_share = 0.0;
   size_t curled_sites = 0;        // sites added to split cells that wrap around thin parts (kMinCellFlatness)
   size_t tip_sites = 0;           // sites added at the tips of narrow holes (remesh/boundary_tips.h)
   // The threshold was judged on a uniform refinement (RefineOptions), not

@@ -22,6 +22,16 @@ enum class Adaptivity {
                    // `max_loss_db` of the uniform remesh's
 };
 
+// Whether the remesh keeps the input's sharp creases (where the surface
+// folds by more than 30 degrees): as base edges, their corners as base
+// vertices, recorded in the file and predicted along by the wavelet, so
+// that they stay sharp at every rate.
+enum class Creases {
+  kAuto,  // where they are a real share of the shape (CAD parts): 5% of the base mesh's edges
+  kKeep,  // every crease long enough for the base mesh to follow (a base edge)
+  kOff,   // none
+};
+
 // How much of the embedded stream the file keeps: one of these.
 struct Rate {
   enum class Kind {
@@ -62,6 +72,7 @@ struct EncodeOptions {
   double max_loss_db = 0.5;      // kMeasuredError: 0.01 .. 60
   double deepen_fraction = 0.0;  // kMeasuredError: first split once more this share of the finest triangles
                                  // holding the most error (0 .. 1); the file may then have one level more
+  Creases creases = Creases::kAuto;
   Rate rate;                     // the knee by default
   // The coder: tangential detail components' quantizer step relative to
   // normal ones (0.25 .. 64); bits per coordinate of the base mesh's grid

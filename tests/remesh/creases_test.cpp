@@ -1,4 +1,4 @@
-// Creases through the remesher (RemeshOptions::features) on shapes whose
+// Creases through the remesher (RemeshOptions::creases) on shapes whose
 // creases are known: the crease edges of each level of a hierarchy
 // (format/semi_regular/creases.h), the oversampling's halves of crease
 // edges, a base mesh whose edges follow a cube's twelve edges, a whole
@@ -40,7 +40,7 @@ RemeshOptions crease_options(int levels, size_t base_vertices) {
   o.base_vertices = base_vertices;
   o.uniform = true;
   o.oversample = 0;
-  o.features = true;
+  o.creases = CreaseMode::kKeep;
   return o;
 }
 
@@ -91,6 +91,32 @@ TEST(Creases, BaseFollowsCreasesNoShorterThanItsEdges) {
   const BaseMeshCreases dropped = base_creases(cube, features, coarse);
   EXPECT_TRUE(dropped.edges.empty());
   EXPECT_TRUE(dropped.fixed.empty());
+}
+
+// Two unit squares folded at 90 degrees: one crease of length 1. A base of
+// n vertices on area 2 has edges of sqrt(4 / (sqrt(3) n)); at 30 vertices
+// 0.28, so the crease is 3.6 base edges, 4.0% of the base's 90 edges:
+// followed when asked, not by the automatic choice (kAutoCreaseEdgeShare),
+// which a cube (its 12 edges all creases) passes.
+TEST(Creases, AutomaticChoiceFollowsCreasesOnlyWhereTheyAreAShareOfTheShape) {
+  test::GridBuilder g;
+  g.patch(24, [](double u, double v) { return Eigen::Vector3d(-u, v, 0); });
+  g.patch(24, [](double u, double v) { return Eigen::Vector3d(0, u, v); });
+  const Features folded = detect_features(g.mesh);
+  BaseCreaseOptions o;
+  o.base_vertices = 30;
+  EXPECT_NEAR(crease_edge_share(g.mesh, folded, o), 1.0 / (equilateral_edge_length(2.0, 30) * 90.0), 1e-9);
+  EXPECT_EQ(base_creases(g.mesh, folded, o).edges.size(), 24u);
+  o.min_edge_share = kAutoCreaseEdgeShare;
+  const BaseMeshCreases automatic = base_creases(g.mesh, folded, o);
+  EXPECT_TRUE(automatic.edges.empty());
+  EXPECT_TRUE(automatic.fixed.empty());
+  o.base_vertices = 12;  // edges 0.44 long: 2.3 base edges of 36, 6.3%
+  EXPECT_EQ(base_creases(g.mesh, folded, o).edges.size(), 24u);
+
+  const TriangleMesh cube = test::grid_cube(6);
+  o.base_vertices = 40;
+  EXPECT_EQ(base_creases(cube, detect_features(cube), o).edges.size(), 12u * 6);
 }
 
 TEST(Creases, OversamplingSplitsEachCreaseEdgeAlongItself) {
@@ -195,8 +221,8 @@ TEST(Creases, RemeshKeepsEveryCreaseVertexOnTheCubesEdges) {
     }
     EXPECT_NEAR(length, 24.0, 1e-6) << "level " << level;
   }
-  // And without features the remesh's edges cut the cube's corners off.
-  o.features = false;
+  // And without creases the remesh's edges cut the cube's corners off.
+  o.creases = CreaseMode::kIgnore;
   auto plain = remesh(cube, o);
   ASSERT_TRUE(plain.ok());
   EXPECT_TRUE(plain->crease_edges.empty());
@@ -206,8 +232,7 @@ TEST(Creases, RemeshKeepsEveryCreaseVertexOnTheCubesEdges) {
 }
 
 TEST(Creases, AMeshOfCornersIsItsOwnBaseWithItsEdgesAsCreases) {
-  RemeshOptions o;
-  o.features = true;
+  RemeshOptions o;  // creases decided by the remesher: a cube is all creases
   o.fit_levels = true;  // 8 vertices: the input is its own base mesh
   auto srm = remesh(test::unit_cube(), o);
   ASSERT_TRUE(srm.ok()) << srm.status().message();
@@ -249,7 +274,7 @@ TEST(Creases, NoisySphereHasNoCreasesToKeep) {
   }
   RemeshOptions o = crease_options(2, 40);
   auto with = remesh(sphere, o);
-  o.features = false;
+  o.creases = CreaseMode::kIgnore;
   auto plain = remesh(sphere, o);
   ASSERT_TRUE(plain.ok() && with.ok());
   EXPECT_TRUE(with->crease_edges.empty());

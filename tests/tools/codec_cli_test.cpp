@@ -122,10 +122,10 @@ TEST(CodecCli, InfoShowsTheCreases) {
   EXPECT_EQ(json_number(plain_json.out, "crease_edges"), 0);
 }
 
-// A cube encoded with --features keeps its edges: the file records creases
-// and the decoded default-rate cube shows fewer visibly wrong pixels than
-// the same encode without them, whose edges ripple.
-TEST(CodecCli, FeaturesKeepACubesEdgesThroughTheCoding) {
+// A cube, all creases, keeps its edges by default (--creases auto): the file
+// records them and the decoded default-rate cube shows fewer visibly wrong
+// pixels than the same encode with --creases off, whose edges ripple.
+TEST(CodecCli, CreasesKeepACubesEdgesThroughTheCoding) {
   test::ScratchDir dir;
   const TriangleMesh cube = test::grid_cube(20);
   std::string obj;
@@ -137,8 +137,8 @@ TEST(CodecCli, FeaturesKeepACubesEdgesThroughTheCoding) {
   double defects[2] = {0.0, 0.0};
   for (int features = 0; features < 2; ++features) {
     const std::string srm = q(dir.file("c.srm")), out = q(dir.file("c.obj"));
-    auto e = run_srcodec("encode -q --levels 3 --base-vertices 40 " + std::string(features ? "--features " : "") + in +
-                         " -o " + srm);
+    auto e = run_srcodec("encode -q --levels 3 --base-vertices 40 " + std::string(features ? "" : "--creases off ") +
+                         in + " -o " + srm);
     ASSERT_EQ(e.exit_code, 0) << e.err;
     auto info = run_srcodec("info --json " + srm);
     EXPECT_EQ(json_number(info.out, "crease_edges") > 0, features == 1) << info.out;
@@ -148,6 +148,10 @@ TEST(CodecCli, FeaturesKeepACubesEdgesThroughTheCoding) {
     defects[features] = json_number(c.out, "defect_share");
   }
   EXPECT_LT(defects[1], 0.5 * defects[0]) << "defect pixels with " << defects[1] << ", without " << defects[0];
+  auto bad = run_srcodec("encode -q --creases sharp " + in + " -o " + q(dir.file("d.srm")));
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("--creases sharp: use auto, keep or off"), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("d.srm")));
 }
 
 // An encode stopped by the user (Ctrl-C, after a second) leaves no partial

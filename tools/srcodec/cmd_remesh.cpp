@@ -64,6 +64,7 @@ JsonWriter summary_json(const RemeshCliOptions& o, const TriangleMesh& input, co
       .field("promoted_vertices", report.promoted_vertices)
       .field("crease_vertices_kept", report.crease_vertices_kept)
       .field("base_crease_edges", report.base_crease_edges)
+      .field("crease_edge_share", report.crease_edge_share)
       .field("curled_sites", report.curled_sites)
       .field("tip_sites", report.tip_sites)
       .field("uniform", options.uniform)

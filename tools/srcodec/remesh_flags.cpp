@@ -43,10 +43,11 @@ void add_remesh_flags(Subcommand& cmd, RemeshFlags& f) {
              "Oversampling scheme: butterfly (the paper's), loop (the paper's comparison, its Fig. 6), or linear "
              "(ours: keeps the input's facets)")
       .show_default();
-  cmd.flag("--features", f.features,
-           "Keep the input's sharp creases (CAD parts): base edges along them, their corners as base vertices, "
-           "the file records them and the coding predicts along them (off by default: on meshes with few creases "
-           "it moves the rate-distortion both ways; docs/remesh_design.md, Creases)");
+  cmd.option("--creases", f.creases,
+             "Keep the input's sharp creases as base edges, their corners as base vertices, recorded in the file "
+             "and predicted along by the coding: auto (where they are a real share of the shape, as on CAD parts), "
+             "keep (every crease long enough for the base mesh to follow) or off (docs/remesh_design.md, Creases)")
+      .show_default();
 }
 
 void add_experiment_flags(Subcommand& cmd, RemeshFlags& f) {
@@ -88,7 +89,15 @@ StatusOr<RemeshOptions> to_remesh_options(const RemeshFlags& o) {
   r.untangle = o.untangle;
   r.unsplit_tangles = o.unsplit_tangles;
   r.relax_slivers = o.relax_slivers;
-  r.features = o.features;
+  if (o.creases == "auto") {
+    r.creases = CreaseMode::kAuto;
+  } else if (o.creases == "keep") {
+    r.creases = CreaseMode::kKeep;
+  } else if (o.creases == "off") {
+    r.creases = CreaseMode::kIgnore;
+  } else {
+    return invalid_argument("--creases " + o.creases + ": use auto, keep or off");
+  }
   if (o.oversample == "auto") {
     r.oversample = -1;
   } else if (o.oversample.size() == 1 && o.oversample[0] >= '0' && o.oversample[0] <= '3') {

@@ -22,7 +22,7 @@ struct RemeshFlags {
   bool untangle = true;
   bool unsplit_tangles = false;
   bool relax_slivers = true;
-  bool features = false;
+  std::string creases = "auto";
   // Set by add_remesh_flags: without --levels, `levels` is fitted to small
   // inputs (RemeshOptions::fit_levels); --max-loss, which --tolerance
   // excludes.
@@ -32,7 +32,7 @@ struct RemeshFlags {
 
 // Adds the user's remesh options, shared by remesh, encode and rd: --levels,
 // --base-vertices, --threshold (the paper's Eq. 5), --uniform, --max-loss,
-// --deepen, --oversample, --scheme, --features.
+// --deepen, --oversample, --scheme, --creases.
 void add_remesh_flags(Subcommand& cmd, RemeshFlags& flags);
 // Adds the switches that exist for experiments (tools/bench/remesh_experiment):
 // --tolerance, --no-fit-surface, --no-untangle, --no-relax-slivers,
