@@ -31,19 +31,17 @@ std::vector<const FeatureCurve*> followable(const TriangleMesh& mesh, const Feat
 
 }  // namespace
 
-double crease_edge_share(const TriangleMesh& mesh, const Features& features, const BaseCreaseOptions& options) {
+double followable_base_edges(const TriangleMesh& mesh, const Features& features, const BaseCreaseOptions& options) {
   if (options.base_vertices == 0) return 0.0;
   const double base_edge = equilateral_edge_length(mesh_area(mesh), options.base_vertices);
   double length = 0.0;
   for (const FeatureCurve* curve : followable(mesh, features, options.min_base_edges * base_edge))
     length += curve_length(mesh, *curve);
-  // A closed mesh has about 3 edges per vertex (Euler).
-  return length / base_edge / (3.0 * static_cast<double>(options.base_vertices));
+  return length / base_edge;
 }
 
 BaseMeshCreases base_creases(const TriangleMesh& mesh, const Features& features, const BaseCreaseOptions& options) {
   const double shortest = options.min_base_edges * equilateral_edge_length(mesh_area(mesh), options.base_vertices);
-  if (options.base_vertices > 0 && options.min_edge_share > 0.0 && crease_edge_share(mesh, features, options) < options.min_edge_share) return {};
   const size_t n = mesh.positions.size();
   std::vector<int32_t> degree(n, 0);
   std::vector<char> on_boundary(n, 0);

@@ -21,32 +21,27 @@ struct BaseCreaseOptions {
   // The base mesh's vertices, which set its edge length (0: keep every
   // crease).
   size_t base_vertices = 0;
-  // The curves kept are followed only if they would take at least this
-  // share of the base's edges (about 3 per base vertex), else none is: on
-  // a part made of creases (a CAD part) they are the shape, on a scan or a
-  // sculpt they are a few ridges whose constraints cost the base more than
-  // their sharpness saves the coding (docs/remesh_design.md, "Creases").
-  // 0: follow any.
-  double min_edge_share = 0.0;
 };
 
-// BaseCreaseOptions::min_edge_share when the remesher decides by itself
-// (CreaseMode::kAuto): over the whole corpus, the shares fall into two
-// groups a decade apart, and this is the middle of the gap on a log scale
-// (the figures are in docs/remesh_design.md, "Creases").
-inline constexpr double kAutoCreaseEdgeShare = 0.05;
+// With CreaseMode::kAuto the remesher follows a mesh's creases only if the
+// curves long enough to follow would take at least this share of its base's
+// edges (about 3 per base vertex), else none: on a part made of creases (a
+// CAD part) they are the shape; on a scan or a sculpt they are a few ridges
+// whose constraints cost the base more than their sharpness saves the
+// coding. Over the whole corpus the CAD part's share is more than four times
+// the largest of the scans' and sculpts', and this is the geometric mean of
+// the two (the figures are in docs/remesh_design.md, "Creases").
+inline constexpr double kAutoCreaseEdgeShare = 0.075;
 
-// The share of the base's edges (about 3 per base vertex) the crease
-// curves long enough to follow would take, in base edge lengths; 0 without
-// base_vertices.
-double crease_edge_share(const TriangleMesh& mesh, const Features& features, const BaseCreaseOptions& options);
+// The length of the crease curves long enough to follow, in base edges; 0
+// without base_vertices.
+double followable_base_edges(const TriangleMesh& mesh, const Features& features, const BaseCreaseOptions& options);
 
 // The creases of `features` (detected on `mesh`) as build_base_mesh takes
 // them: the crease edges of the curves kept, and fixed the features'
 // corners and ends on them and every vertex not on exactly two kept crease
 // edges away from the boundary (where creases branch, stop, or run into
-// the boundary); nothing when the curves kept fall short of
-// min_edge_share.
+// the boundary).
 BaseMeshCreases base_creases(const TriangleMesh& mesh, const Features& features, const BaseCreaseOptions& options);
 
 }  // namespace srcodec

@@ -206,6 +206,11 @@ class Remesher {
   RemeshReport& rep_;
   std::vector<ComponentMesh> parts_;
   std::vector<BaseMeshCreases> creases_;  // per component, as RemeshOptions::creases asks
+  // Fills creases_ (RemeshOptions::creases) and the report's
+  // crease_edge_share: with kAuto all the components' creases or none, as
+  // the mesh's followable curves take kAutoCreaseEdgeShare of its base's
+  // edges or not.
+  void choose_creases();
   std::vector<size_t> share_;
   size_t base_total_ = 0;
   double finest_ = 0.0;
@@ -265,16 +270,8 @@ Status Remesher::split_and_oversample() {
   const std::vector<int> steps = oversampling_steps(options_.levels, options_.oversample);
   SRCODEC_RETURN_IF_ERROR(check_memory(steps));
   const auto start = std::chrono::steady_clock::now();
-  creases_.assign(parts_.size(), BaseMeshCreases{});
+  choose_creases();
   for (size_t c = 0; c < parts_.size(); ++c) {
-    if (options_.creases != CreaseMode::kIgnore) {
-      BaseCreaseOptions keep;
-      keep.base_vertices = share_[c];
-      keep.min_edge_share = options_.creases == CreaseMode::kAuto ? kAutoCreaseEdgeShare : 0.0;
-      const Features features = detect_features(parts_[c].mesh);
-      rep_.crease_edge_share = std::max(rep_.crease_edge_share, crease_edge_share(parts_[c].mesh, features, keep));
-      creases_[c] = base_creases(parts_[c].mesh, features, keep);
-    }
     SRCODEC_ASSIGN_OR_RETURN(parts_[c].mesh,
                              oversample(parts_[c].mesh, options_.scheme, steps[c], &creases_[c].edges));
     rep_.component_oversample_steps.push_back(steps[c]);
@@ -289,6 +286,24 @@ Status Remesher::split_and_oversample() {
     progress(p);
   }
   return ok_status();
+}
+
+void Remesher::choose_creases() {
+  creases_.assign(parts_.size(), BaseMeshCreases{});
+  if (options_.creases == CreaseMode::kIgnore) return;
+  double followed = 0.0, base_vertices = 0.0;
+  for (size_t c = 0; c < parts_.size(); ++c) {
+    BaseCreaseOptions keep;
+    keep.base_vertices = share_[c];
+    const Features features = detect_features(parts_[c].mesh);
+    followed += followable_base_edges(parts_[c].mesh, features, keep);
+    base_vertices += static_cast<double>(share_[c]);
+    creases_[c] = base_creases(parts_[c].mesh, features, keep);
+  }
+  // A closed mesh has about 3 edges per vertex (Euler).
+  rep_.crease_edge_share = base_vertices > 0.0 ? followed / (3.0 * base_vertices) : 0.0;
+  if (options_.creases == CreaseMode::kAuto && rep_.crease_edge_share < kAutoCreaseEdgeShare)
+    creases_.assign(parts_.size(), BaseMeshCreases{});
 }
 
 std::vector<int> Remesher::oversampling_steps(int levels, int asked) const {

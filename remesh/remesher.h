@@ -24,7 +24,7 @@
 namespace srcodec {
 
 enum class CreaseMode {
-  kAuto,    // per component, where the creases kept take kAutoCreaseEdgeShare of its base's edges
+  kAuto,    // where the creases long enough to follow take kAutoCreaseEdgeShare of the base's edges
   kKeep,    // wherever a crease curve is long enough for the base to follow
   kIgnore,  // never
 };
@@ -112,8 +112,9 @@ struct RemeshReport {
   size_t promoted_vertices = 0;   // non-sites the base mesh had to keep (see build_base_mesh)
   size_t crease_vertices_kept = 0;  // of those, on creases (RemeshOptions::creases)
   size_t base_crease_edges = 0;     // base edges along the input's creases (RemeshOptions::creases)
-  // The most of its base's edges any component's creases would take
-  // (remesh/base_creases.h, crease_edge_share), kept or not; 0 with kIgnore.
+  // The share of the base's edges the creases long enough to follow would
+  // take (remesh/base_creases.h, kAutoCreaseEdgeShare), kept or not; 0 with
+  // CreaseMode::kIgnore.
   double crease_edge_share = 0.0;
   size_t curled_sites = 0;        // sites added to split cells that wrap around thin parts (kMinCellFlatness)
   size_t tip_sites = 0;           // sites added at the tips of narrow holes (remesh/boundary_tips.h)

@@ -27,7 +27,7 @@ enum class Adaptivity {
 // vertices, recorded in the file and predicted along by the wavelet, so
 // that they stay sharp at every rate.
 enum class Creases {
-  kAuto,  // where they are a real share of the shape (CAD parts): 5% of the base mesh's edges
+  kAuto,  // where they are a real share of the shape (CAD parts): 7.5% of the base mesh's edges
   kKeep,  // every crease long enough for the base mesh to follow (a base edge)
   kOff,   // none
 };

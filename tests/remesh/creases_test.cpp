@@ -102,21 +102,27 @@ TEST(Creases, AutomaticChoiceFollowsCreasesOnlyWhereTheyAreAShareOfTheShape) {
   test::GridBuilder g;
   g.patch(24, [](double u, double v) { return Eigen::Vector3d(-u, v, 0); });
   g.patch(24, [](double u, double v) { return Eigen::Vector3d(0, u, v); });
-  const Features folded = detect_features(g.mesh);
   BaseCreaseOptions o;
   o.base_vertices = 30;
-  EXPECT_NEAR(crease_edge_share(g.mesh, folded, o), 1.0 / (equilateral_edge_length(2.0, 30) * 90.0), 1e-9);
-  EXPECT_EQ(base_creases(g.mesh, folded, o).edges.size(), 24u);
-  o.min_edge_share = kAutoCreaseEdgeShare;
-  const BaseMeshCreases automatic = base_creases(g.mesh, folded, o);
-  EXPECT_TRUE(automatic.edges.empty());
-  EXPECT_TRUE(automatic.fixed.empty());
-  o.base_vertices = 12;  // edges 0.44 long: 2.3 base edges of 36, 6.3%
-  EXPECT_EQ(base_creases(g.mesh, folded, o).edges.size(), 24u);
+  EXPECT_NEAR(followable_base_edges(g.mesh, detect_features(g.mesh), o), 1.0 / equilateral_edge_length(2.0, 30),
+              1e-9);
 
-  const TriangleMesh cube = test::grid_cube(6);
-  o.base_vertices = 40;
-  EXPECT_EQ(base_creases(cube, detect_features(cube), o).edges.size(), 12u * 6);
+  RemeshOptions keep = crease_options(1, 30);
+  auto kept = remesh(g.mesh, keep);
+  ASSERT_TRUE(kept.ok()) << kept.status().message();
+  EXPECT_FALSE(kept->crease_edges.empty());
+  RemeshOptions automatic = keep;
+  automatic.creases = CreaseMode::kAuto;
+  RemeshReport report;
+  auto chosen = remesh(g.mesh, automatic, &report);
+  ASSERT_TRUE(chosen.ok()) << chosen.status().message();
+  EXPECT_TRUE(chosen->crease_edges.empty());
+  EXPECT_NEAR(report.crease_edge_share, 1.0 / (equilateral_edge_length(2.0, 30) * 90.0), 1e-9);
+  automatic.base_vertices = 6;  // edges 0.62 long: 1.6 base edges of 18, 9.0%
+  auto coarse = remesh(g.mesh, automatic, &report);
+  ASSERT_TRUE(coarse.ok()) << coarse.status().message();
+  EXPECT_FALSE(coarse->crease_edges.empty());
+  EXPECT_GT(report.crease_edge_share, kAutoCreaseEdgeShare);
 }
 
 TEST(Creases, OversamplingSplitsEachCreaseEdgeAlongItself) {
