@@ -5,14 +5,14 @@ sees at the rate `srcodec encode` picks without a rate option (the knee of its c
 usage: tools/render_knee.py MESH [--views K,K] [--up X,Y,Z] [--resolution N] [--out DIR] [--name NAME]
                             [--srcodec BIN] [--keep DIR] [-- ENCODE OPTIONS]
 
-Encodes MESH at the default rate (`srcodec encode`, with the options after `--`, e.g. --features),
+Encodes MESH at the default rate (`srcodec encode`, with the options after `--`, e.g. --creases off),
 decodes it, encodes it with Draco (-cl 10) at every qp from 6 to 16 and keeps the qp whose file is
 nearest the .srm in bytes, measures both decoded meshes against MESH (`srcodec compare --json`),
 and renders the three side by side (`srcodec render`) from each view K (one of the visual
 measure's 16 directions), one row per view, a caption above each column. Writes OUT/NAME.png and
 OUT/NAME.md (the bytes and figures of both files as a Markdown table) and prints the table.
 OUT defaults to docs/images, NAME to the mesh's name followed by the encode options
-(fandisk-features).
+(fandisk-creases-off).
 """
 
 import argparse
