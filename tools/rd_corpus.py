@@ -27,15 +27,15 @@ REPO = os.path.dirname(HERE)
 MESH_EXTENSIONS = (".obj", ".off", ".ply", ".stl")
 
 
-def find_srcodec(explicit):
-    """The srcodec binary that has the `rd` command: --srcodec, else build*/tools/srcodec."""
+def find_srcodec(explicit, command="rd", script="rd_corpus.py"):
+    """The srcodec binary that has `command`: --srcodec, else build*/tools/srcodec."""
     candidates = [explicit] if explicit else (
         [os.path.join(REPO, "build", "tools", "srcodec")] +
         sorted(glob.glob(os.path.join(REPO, "build*", "tools", "srcodec"))))
     for c in candidates:
-        if os.access(c, os.X_OK) and subprocess.run([c, "rd", "--help"], capture_output=True).returncode == 0:
+        if os.access(c, os.X_OK) and subprocess.run([c, command, "--help"], capture_output=True).returncode == 0:
             return c
-    sys.exit("rd_corpus.py: no srcodec binary with the `rd` command among " + ", ".join(candidates) +
+    sys.exit(f"{script}: no srcodec binary with the `{command}` command among " + ", ".join(candidates) +
              " (build it, or pass --srcodec)")
 
 

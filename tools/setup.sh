@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 packages=(
   cmake make g++ pkg-config
   libopenmesh-dev libeigen3-dev libnanoflann-dev
-  libdraco-dev draco libcgal-dev libembree-dev libtbb-dev
+  libdraco-dev draco libcgal-dev libembree-dev libtbb-dev libpng-dev
   libgtest-dev libbenchmark-dev
   python3 python3-numpy python3-scipy python3-matplotlib
   clang libclang-rt-14-dev

@@ -342,6 +342,33 @@ TEST(CommandLine, MistakesInTheProgramThrow) {
   EXPECT_THROW(cli.add_command("run", "again"), std::logic_error);
 }
 
+TEST(CommandLine, APositionalListTakesEveryArgumentLeft) {
+  CommandLine cli("prog", "prog", "1");
+  Subcommand& cmd = cli.add_command("show", "Show meshes");
+  std::string first, output;
+  std::vector<std::string> rest;
+  cmd.positional("first", first, "The first");
+  cmd.positional_list("more", rest, "The others");
+  cmd.option("-o,--output", output, "Where");
+  std::string extra;
+  EXPECT_THROW(cmd.positional("extra", extra, ""), std::logic_error);
+  std::ostringstream out, err;
+  ASSERT_NE(cli.parse({"show", "a.obj", "b.obj", "-o", "x.png", "c.obj", "--", "-d.obj"}, out, err).command, nullptr)
+      << err.str();
+  EXPECT_EQ(first, "a.obj");
+  EXPECT_EQ(rest, (std::vector<std::string>{"b.obj", "c.obj", "-d.obj"}));
+  EXPECT_NE(cmd.help().find("Usage: prog show FIRST MORE... [options]"), std::string::npos) << cmd.help();
+  EXPECT_NE(cmd.help().find("  MORE..."), std::string::npos) << cmd.help();
+
+  CommandLine none("prog", "prog", "1");
+  Subcommand& cmd2 = none.add_command("show", "Show meshes");
+  std::vector<std::string> meshes;
+  cmd2.positional_list("mesh", meshes, "Meshes");
+  std::ostringstream out2, err2;
+  EXPECT_EQ(none.parse({"show"}, out2, err2).command, nullptr);
+  EXPECT_NE(err2.str().find("MESH is missing"), std::string::npos) << err2.str();
+}
+
 TEST(CommandLine, GivenTellsWhatTheUserGave) {
   CommandLine cli("prog", "prog", "1");
   Subcommand& cmd = cli.add_command("run", "Run");

@@ -16,6 +16,7 @@
 
 #include "format/mesh.h"
 #include "format/status.h"
+#include "tools/measure/ray_cast.h"  // view_directions: where the views look from
 
 namespace srcodec {
 
@@ -69,10 +70,6 @@ class VisualReference {
   explicit VisualReference(std::unique_ptr<State> state);
   std::unique_ptr<State> state_;
 };
-
-// The directions the views look from (unit vectors from the centre towards
-// the viewer), for VisualOptions::views of them.
-std::vector<Eigen::Vector3d> view_directions(int views);
 
 // VisualReference::build(reference, options) and difference_to(test).
 StatusOr<VisualDifference> visual_difference(const TriangleMesh& reference, const TriangleMesh& test,

@@ -171,7 +171,7 @@ void Option::add_exclusion(Option& other) {
 }
 
 std::string Option::help_label() const {
-  if (positional_) return name_;
+  if (positional_) return repeats() ? name_ + "..." : name_;
   std::string label = short_name_.empty() ? "    " : short_name_ + (long_name_.empty() ? "" : ", ");
   label += long_name_;
   if (takes_value()) label += std::string(" ") + value_placeholder();
@@ -200,6 +200,8 @@ void Subcommand::adopt(std::unique_ptr<Option> option, bool positional) {
     if (n->empty()) continue;
     if (is_help(*n) || find(*n) != nullptr) throw std::logic_error(name_ + ": " + *n + " is added twice");
   }
+  if (option->positional_ && !positionals_.empty() && positionals_.back()->repeats())
+    throw std::logic_error(name_ + ": " + option->name_ + " follows " + positionals_.back()->name_ + "...");
   if (option->positional_) positionals_.push_back(option.get());
   options_.push_back(std::move(option));
 }
@@ -211,7 +213,7 @@ Option* Subcommand::find(const std::string& name) const {
 }
 
 std::string Subcommand::give(Option& option, const std::string& text) {
-  if (option.given_ && option.takes_value()) return option.name() + " is given more than once";
+  if (option.given_ && option.takes_value() && !option.repeats()) return option.name() + " is given more than once";
   const std::string problem = option.take(text);
   if (!problem.empty()) return option.name() + " " + quoted_if_empty(text) + ": " + problem;
   option.given_ = true;
@@ -250,7 +252,9 @@ std::string Subcommand::parse(const std::vector<std::string>& args, bool& help_a
       only_positionals = true;
     } else if (only_positionals || !looks_like_option(arg)) {
       if (next_positional == positionals_.size()) return "unexpected argument " + quoted_if_empty(arg);
-      problem = give(*positionals_[next_positional++], arg);
+      Option& positional = *positionals_[next_positional];
+      if (!positional.repeats()) ++next_positional;
+      problem = give(positional, arg);
     } else {
       problem = take_option(args, i);
     }
@@ -277,7 +281,7 @@ std::string Subcommand::usage() const {
   bool optional = false;
   for (const auto& o : options_) {
     if (o->positional_) {
-      line += " " + o->name();
+      line += " " + o->help_label();
     } else if (o->required_) {
       line += " " + o->name() + " " + o->value_placeholder();
     } else {

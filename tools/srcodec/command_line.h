@@ -79,6 +79,8 @@ class Option {
  private:
   friend class Subcommand;
   virtual bool takes_value() const = 0;
+  // A positional that takes every argument left (ListOption).
+  virtual bool repeats() const { return false; }
   // Converts and checks `text` and stores it in the bound variable; returns
   // what is wrong with it, or an empty string. Flags get "".
   virtual std::string take(const std::string& text) = 0;
@@ -207,6 +209,25 @@ class FlagOption final : public ChainedOption<FlagOption> {
   bool value_when_given_;
 };
 
+// The last positional argument, taking every one left ("MESH..."): at
+// least one, in the order given.
+class ListOption final : public ChainedOption<ListOption> {
+ public:
+  ListOption(const std::string& name, std::vector<std::string>& target, std::string help)
+      : ChainedOption<ListOption>(name, std::move(help)), target_(target) {}
+
+ private:
+  bool takes_value() const override { return true; }
+  bool repeats() const override { return true; }
+  const char* value_placeholder() const override { return "TEXT"; }
+  std::string take(const std::string& text) override {
+    target_.push_back(text);
+    return {};
+  }
+
+  std::vector<std::string>& target_;
+};
+
 class Subcommand {
  public:
   Subcommand(std::string program, std::string name, std::string description);
@@ -219,6 +240,10 @@ class Subcommand {
   // Positional arguments are required and taken in the order added.
   ValueOption<std::string>& positional(const std::string& name, std::string& target, std::string help) {
     return add(std::make_unique<ValueOption<std::string>>(name, target, std::move(help)), true).required();
+  }
+  // After every other positional: throws when one is added after it.
+  ListOption& positional_list(const std::string& name, std::vector<std::string>& target, std::string help) {
+    return add(std::make_unique<ListOption>(name, target, std::move(help)), true).required();
   }
   template <typename T>
   ValueOption<T>& option(const std::string& names, T& target, std::string help) {

@@ -26,6 +26,7 @@ Command add_subdivide_command(CommandLine& cli);
 Command add_encode_command(CommandLine& cli);
 Command add_decode_command(CommandLine& cli);
 Command add_rd_command(CommandLine& cli);
+Command add_render_command(CommandLine& cli);
 
 // `info` on an .srm file (srm_info.cpp).
 Status print_srm_info(const std::string& path, bool json);

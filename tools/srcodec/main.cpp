@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
       srcodec::add_decode_command(cli),
 #if SRCODEC_WITH_MEASURE
       srcodec::add_rd_command(cli),
+      srcodec::add_render_command(cli),
 #endif
   };
 
