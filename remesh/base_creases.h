@@ -1,5 +1,5 @@
 // Which of the input's creases (remesh/features.h) the base mesh follows
-// (RemeshOptions::features): the crease edges, and the vertices it must keep
+// (RemeshOptions::creases): the crease edges, and the vertices it must keep
 // where creases meet, turn or end.
 #pragma once
 

@@ -1,4 +1,4 @@
-// The refinement along the input's creases (RemeshOptions::features): the
+// The refinement along the input's creases (RemeshOptions::creases): the
 // base mesh follows each crease with a chain of edges (remesh/base_mesh.h),
 // and the vertices that refine those edges are kept on the crease the way
 // boundary vertices are kept on the boundary (lloyd_relaxation.cpp): Lloyd

@@ -130,7 +130,7 @@ class Refiner {
   // cycle) and its place along it.
   void build_loops();
 
-  // Creases (crease_sites.cpp; RemeshOptions::features): the vertices on the
+  // Creases (crease_sites.cpp; RemeshOptions::creases): the vertices on the
   // base mesh's crease edges and on the edges refining them stay on the
   // input's creases, as boundary vertices stay on its boundary. A site on
   // one crease of its level's mesh relaxes along the input's crease between

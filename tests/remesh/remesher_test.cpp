@@ -16,7 +16,9 @@
 #include "remesh/memory_budget.h"
 #include "format/mesh_files/mesh_io.h"
 #include "format/mesh_files/mesh_stats.h"
+#include "remesh/base_creases.h"
 #include "remesh/components.h"
+#include "remesh/features.h"
 #include "remesh/measured_coarsening.h"
 #include "remesh/oversample.h"
 #include "remesh/surface_distance.h"
@@ -39,14 +41,25 @@ std::vector<Eigen::Vector3d> vertex_normals(const TriangleMesh& m) {
 
 // What the remesher ran on: the input's components, consistently oriented,
 // each oversampled with Butterfly as many times as the report says.
-TriangleMesh oversampled(const TriangleMesh& input, const std::vector<int>& steps) {
+// With `crease_base_vertices`, a one-component input whose creases the
+// remesh kept for a base of that many vertices: the crease-aware Butterfly
+// along the same creases, as the remesher oversamples it.
+TriangleMesh oversampled(const TriangleMesh& input, const std::vector<int>& steps, size_t crease_base_vertices = 0) {
   auto parts = split_into_manifold_components(input);
   EXPECT_TRUE(parts.ok()) << parts.status().message();
   TriangleMesh out;
   if (!parts.ok()) return out;
   EXPECT_EQ(parts->size(), steps.size());
+  if (crease_base_vertices > 0) {
+    EXPECT_EQ(parts->size(), 1u) << "creases of several components";
+  }
   for (size_t c = 0; c < parts->size() && c < steps.size(); ++c) {
-    auto fine = oversample(parts.value()[c].mesh, OversampleScheme::kButterfly, steps[c]);
+    const TriangleMesh& part = parts.value()[c].mesh;
+    BaseCreaseOptions keep;
+    keep.base_vertices = crease_base_vertices;
+    std::vector<std::array<int32_t, 2>> creases;
+    if (crease_base_vertices > 0) creases = base_creases(part, detect_features(part), keep).edges;
+    auto fine = oversample(part, OversampleScheme::kButterfly, steps[c], &creases);
     EXPECT_TRUE(fine.ok()) << fine.status().message();
     if (fine.ok()) append_mesh(out, fine.value());
   }
@@ -898,7 +911,8 @@ TEST_P(CorpusTopology, KeepsTopologyWithoutFolds) {
   // a few tenths of a percent (on thin low-poly pieces); the bound of 1%
   // catches a regression to hundreds or thousands.
   const TriangleMesh finest = srm->level_mesh(2);
-  const TriangleMesh oversampled_input = oversampled(input.value(), report.component_oversample_steps);
+  const TriangleMesh oversampled_input =
+      oversampled(input.value(), report.component_oversample_steps, report.base_crease_edges > 0 ? o.base_vertices : 0);
   const InputIndex ran_on(oversampled_input);
   EXPECT_LE(folded_triangles(ran_on, finest), finest.triangles.size() / 100);
   // The report's recount, which judges corners off the input by the input
