@@ -9,7 +9,7 @@ export interface SRMGeometryInfo {
   bytesReceived: number;
   lastCompletePlane: number;
   baseCut: boolean;
-  /** DecodedMesh.creaseEdges: two vertex ids per base edge along which the surface is sharp. */
+  /** DecodedMesh.creaseEdges: two vertex ids per edge of the decoded mesh along which the surface is sharp. */
   creaseEdges: Uint32Array;
   triangles: number;
   /** How long the decode took (refinements only). */

@@ -15,8 +15,9 @@ export interface DecodedMesh {
   /** The bytes end inside the base mesh: `indices` holds the base triangles decoded before the cut. */
   baseCut: boolean;
   /**
-   * The base edges along which the surface is sharp: two vertex ids each, the smaller first, sorted. Base vertices
-   * come first at every level, so the ids hold at any level. Empty for a file without creases.
+   * The edges of this mesh along which the surface is sharp (the file's creases at this level: a base edge that the
+   * finer levels split gives its halves): two vertex ids each, the smaller first, sorted by pair. Empty for a file
+   * without creases.
    */
   creaseEdges: Uint32Array;
   /** The bytes end inside the creases: the mesh is the base mesh (level 0) and creaseEdges is empty. */
@@ -65,7 +66,10 @@ export interface FileInfo {
   baseBytes: number;
   /** The crease chunk's bytes (format version 3); 0 for a file without creases. */
   creaseBytes: number;
-  /** How many base edges are creases; null when the base mesh and creases are not all present, or damaged. */
+  /**
+   * How many base edges are creases (a decoded level's creaseEdges refine them); null when the base mesh and
+   * creases are not all present, or damaged.
+   */
   creaseEdges: number | null;
   baseBits: number;
   levels: number;

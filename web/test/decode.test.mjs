@@ -190,28 +190,44 @@ test('inspect agrees with srcodec info --json, for whole files and prefixes', ()
 });
 
 // tests/data/creases_v3.srm: a sphere with creases on 10 of its 30 base
-// edges. Every level has them, as base vertex ids of its mesh; every prefix
-// decodes as C++ decodes it, and one that ends inside the creases gives the
-// base mesh without them.
+// edges. Every level has its own crease edges, edges of its mesh that chain
+// up into the base's; every prefix decodes as C++ decodes it, and one that
+// ends inside the creases gives the base mesh without them.
 test('creases_v3.srm: the crease edges at every level and the prefixes around them', () => {
   const path = dataPath('creases_v3.srm');
   const bytes = readData('creases_v3.srm');
   const info = decoder.inspect(bytes);
   assert.equal(info.version, 3);
   assert.equal(info.creaseEdges, 10);
-  const base = decoder.decode(bytes, { level: 0 });
-  assert.equal(base.creaseEdges.length, 20);
-  for (let level = -1; level <= info.levels; ++level) {
+  const atLevel = [];
+  for (let level = 0; level <= info.levels; ++level) {
     const mesh = compareWithNative(path, bytes, { level });
-    assert.deepEqual(mesh.creaseEdges, base.creaseEdges, `level ${level}`);
+    const edges = new Set();
+    for (let i = 0; i < mesh.indices.length; i += 3) {
+      for (let k = 0; k < 3; ++k) {
+        const a = mesh.indices[i + k];
+        const b = mesh.indices[i + ((k + 1) % 3)];
+        edges.add(`${Math.min(a, b)} ${Math.max(a, b)}`);
+      }
+    }
+    const crease = mesh.creaseEdges;
+    for (let k = 0; k < crease.length; k += 2) {
+      assert.ok(crease[k] < crease[k + 1], `level ${level}: edge ${k / 2} is not (smaller, larger)`);
+      assert.ok(edges.has(`${crease[k]} ${crease[k + 1]}`), `level ${level}: edge ${k / 2} is not an edge of the mesh`);
+    }
+    assert.ok(crease.length >= (level === 0 ? 20 : atLevel[level - 1].length + 2), `level ${level}: ${crease.length}`);
+    atLevel.push(crease);
   }
+  assert.equal(atLevel[0].length, 20);
+  assert.deepEqual(decoder.decode(bytes).creaseEdges, atLevel.at(-1));
   const creasesEnd = info.levelInfo[1].drawableFrom - info.levelInfo[1].flagBytes;
   const creasesBegin = creasesEnd - info.creaseBytes;
   for (let prefix = info.headerBytes; prefix <= creasesEnd + 1; ++prefix) {
     const mesh = compareWithNative(path, bytes, { prefix });
     const inside = prefix >= creasesBegin && prefix < creasesEnd;
     assert.equal(mesh.creasesCut, inside, `${prefix} bytes: creasesCut`);
-    assert.equal(mesh.creaseEdges.length, prefix >= creasesEnd ? 20 : 0, `${prefix} bytes: creaseEdges`);
+    assert.deepEqual(mesh.creaseEdges, prefix >= creasesEnd ? atLevel[mesh.level] : new Uint32Array(0),
+      `${prefix} bytes: creaseEdges`);
     if (inside) assert.equal(mesh.triangleCount, info.baseTriangles, `${prefix} bytes: the base mesh`);
   }
   assert.equal(decoder.inspect(bytes.subarray(0, creasesEnd - 1)).creaseEdges, null);
