@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <numeric>
+#include <string>
 #include <utility>
 
+#include "format/mesh_convert.h"
 #include "format/union_find.h"
 
 namespace srcodec {
@@ -130,6 +132,34 @@ SectorNormals crease_normals(const TriangleMesh& mesh, const std::vector<std::ar
   out.vertex.resize(sectors);
   for (size_t v = 0; v < n; ++v)
     std::fill(out.vertex.begin() + first_sector[v], out.vertex.begin() + first_sector[v + 1], static_cast<int32_t>(v));
+  return out;
+}
+
+StatusOr<std::vector<std::array<int32_t, 2>>> crease_pairs(const std::vector<uint32_t>& ids, size_t vertex_count) {
+  if (ids.size() % 2 != 0)
+    return invalid_argument("crease_edges: " + std::to_string(ids.size()) + " vertex ids, not two per edge");
+  std::vector<std::array<int32_t, 2>> out(ids.size() / 2);
+  for (size_t k = 0; k < ids.size(); ++k) {
+    if (ids[k] >= vertex_count)
+      return invalid_argument("crease_edges: edge " + std::to_string(k / 2) + " has vertex " + std::to_string(ids[k]) +
+                              ", but the mesh has " + std::to_string(vertex_count) + " vertices");
+    out[k / 2][k % 2] = static_cast<int32_t>(ids[k]);
+  }
+  return out;
+}
+
+// <srcodec/mesh.h>: here rather than with the mesh files, since the
+// browser's decoder (which has no files) shades with it too.
+StatusOr<CornerNormals> corner_normals(const Mesh& mesh, const std::vector<uint32_t>& crease_edges) {
+  SRCODEC_ASSIGN_OR_RETURN(const TriangleMesh m, from_public_mesh(mesh, "the mesh to shade"));
+  SRCODEC_ASSIGN_OR_RETURN(const auto creases, crease_pairs(crease_edges, m.positions.size()));
+  const SectorNormals s = crease_normals(m, creases);
+  CornerNormals out;
+  out.normals.reserve(3 * s.normals.size());
+  for (const Eigen::Vector3f& n : s.normals) out.normals.insert(out.normals.end(), {n.x(), n.y(), n.z()});
+  out.vertices.assign(s.vertex.begin(), s.vertex.end());
+  out.corners.reserve(3 * s.corners.size());
+  for (const auto& c : s.corners) out.corners.insert(out.corners.end(), c.begin(), c.end());
   return out;
 }
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "format/mesh.h"
+#include "format/status.h"
 
 namespace srcodec {
 
@@ -29,5 +30,10 @@ struct SectorNormals {
 // them, so a crease that ends at a vertex (a dart) leaves it one sector.
 // Triangle and crease ids must be vertices of `mesh`.
 SectorNormals crease_normals(const TriangleMesh& mesh, const std::vector<std::array<int32_t, 2>>& creases);
+
+// The public API's crease edges (two vertex ids per edge, as
+// Decoded::crease_edges) as pairs, checked: an even count, every id below
+// `vertex_count`.
+StatusOr<std::vector<std::array<int32_t, 2>>> crease_pairs(const std::vector<uint32_t>& ids, size_t vertex_count);
 
 }  // namespace srcodec
