@@ -22,8 +22,24 @@ export interface DecodedMesh {
   creaseEdges: Uint32Array;
   /** The bytes end inside the creases: the mesh is the base mesh (level 0) and creaseEdges is empty. */
   creasesCut: boolean;
+  /** With the cornerNormals option and crease edges in the mesh, normals split at them; else null. */
+  cornerNormals: CornerNormals | null;
   vertexCount: number;
   triangleCount: number;
+}
+
+/**
+ * Normals that keep the creases sharp (the C++ corner_normals): a vertex has one per sector, the fan of its triangles
+ * between two crease edges, the area-weighted average of their normals; a vertex on no crease edge has one, the
+ * smooth normal. Numbered vertex by vertex.
+ */
+export interface CornerNormals {
+  /** x, y, z of each normal, unit length (zero where its triangles have no area). */
+  normals: Float32Array;
+  /** The vertex of each normal. */
+  vertices: Uint32Array;
+  /** For each entry of `indices`, the index of its corner's normal: the triangles over a vertex per normal. */
+  corners: Uint32Array;
 }
 
 export interface DecodeOptions {
@@ -33,6 +49,8 @@ export interface DecodeOptions {
   maxBytes?: number;
   /** Refuse, before allocating, a level with more vertices (default 2^21, at most 2^22). */
   maxVertices?: number;
+  /** Also compute cornerNormals when the mesh has crease edges (default false). */
+  cornerNormals?: boolean;
 }
 
 export interface LevelInfo {
@@ -112,6 +130,8 @@ export interface RefineEvent {
 export interface ProgressiveOptions {
   level?: number;
   maxVertices?: number;
+  /** As DecodeOptions.cornerNormals. */
+  cornerNormals?: boolean;
   /** Also decode after this many new bytes (0, the default: only where a level or bit plane ends). */
   everyBytes?: number;
   onRefine?: (mesh: DecodedMesh, event: RefineEvent) => void;
