@@ -356,7 +356,7 @@ test('cube_creases_v3.srm: corner normals split at the creases are the faces\' n
 
 // SRMLoader's geometry: for a file with creases, a vertex per corner normal
 // (meshGeometry); for one without, the mesh's vertices and indices with
-// computeVertexNormals, as before creases were split.
+// computeVertexNormals.
 test('SRMLoader splits the normals at the creases, and only there', async () => {
   const parse = (loader, bytes) => new Promise((resolve, reject) => loader.parse(bytes, resolve, reject));
   const loader = new SRMLoader().setDecoder(decoder);
