@@ -12,8 +12,9 @@
 # follow the wavelet's crease rules.
 #   tools/make_golden.sh cube
 # writes tests/data/cube_creases_v3.srm: a cube of 10 x 10 squares a face
-# encoded with --features at the default rate (its creases are the cube's 12
-# edges and its faces decode flat), for the tests of normals split at creases.
+# encoded with --creases keep at the default rate (its creases are the cube's
+# 12 edges and its faces decode flat), for the tests of normals split at
+# creases.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bin=${SRCODEC:-build/tools/srcodec}
@@ -41,7 +42,7 @@ for axis in range(3):
                 faces += ['f %d %d %d' % (a, b, c), 'f %d %d %d' % (a, c, d)]
 open(sys.argv[1], 'w').write('\n'.join(lines + faces) + '\n')
 PY
-  "$bin" encode "$dir/cube.obj" -o tests/data/cube_creases_v3.srm --levels 3 --base-vertices 40 --features -q
+  "$bin" encode "$dir/cube.obj" -o tests/data/cube_creases_v3.srm --levels 3 --base-vertices 40 --creases keep -q
   exit
 fi
 if [[ "$version" == 3 ]]; then

@@ -46,8 +46,9 @@ struct Decoded {
   // The edges of `mesh` along which the surface is sharp (the encoder's
   // creases, at `level`: a base edge the finer levels split gives its
   // halves): two vertex ids of `mesh` per edge, the smaller first, sorted.
-  // Empty for a file without creases. (FileInfo::crease_edges counts the
-  // base mesh's, which are these at level 0.)
+  // corner_normals (<srcodec/mesh.h>) shades the mesh with them sharp. Empty
+  // for a file without creases. (FileInfo::crease_edges counts the base
+  // mesh's, which are these at level 0.)
   std::vector<uint32_t> crease_edges;
   // The bytes end inside the creases: `mesh` is the base mesh (level 0) and
   // crease_edges is empty.

@@ -2,8 +2,9 @@
 //
 //   node web/bench/crease_bench.mjs [--runs 31] [--warmup 3] FILE.srm...
 //
-// Per file (one with creases: `srcodec encode --features`), the median time
-// of two ways to go from the bytes to a three.js geometry with normals:
+// Per file (one with creases, which `srcodec encode` keeps on CAD-like
+// meshes), the median time of two ways to go from the bytes to a three.js
+// geometry with normals:
 //   smooth  decode, then the indexed geometry with computeVertexNormals (what
 //           a file without creases gets);
 //   split   decode with cornerNormals (the WebAssembly module computes them),
