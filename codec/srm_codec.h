@@ -66,11 +66,10 @@ struct DecodedSrm {
   // The file ends inside its base mesh: `mesh` holds the base triangles
   // decoded before the cut (maybe none) and level is 0.
   bool base_cut = false;
-  // The base edges along which the surface is sharp, (a, b) with a < b,
-  // sorted, in base vertex ids (which are the ids of `mesh`'s first
-  // base_vertices vertices at every level): SemiRegularMesh::crease_edges
-  // renumbered as the base mesh coder numbers vertices. Empty in a file
-  // without creases (versions 1 and 2).
+  // The edges of `mesh` along which the surface is sharp, (a, b) with a <
+  // b, sorted: the file's base creases (SemiRegularMesh::crease_edges
+  // renumbered as the base mesh coder numbers vertices) refined to `level`
+  // (crease_edges_up_to). Empty in a file without creases (versions 1 and 2).
   std::vector<std::array<int32_t, 2>> crease_edges;
   // The file ends inside its crease chunk: `mesh` is the whole base mesh at
   // level 0 (no level above can be decoded without the creases) and

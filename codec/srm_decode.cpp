@@ -17,6 +17,7 @@
 #include "codec/srm_layout.h"
 #include "format/in_halves.h"
 #include "format/prefault.h"
+#include "format/semi_regular/creases.h"
 #include "wavelet/lifting.h"
 
 namespace srcodec {
@@ -311,7 +312,7 @@ StatusOr<DecodedSrm> decode_srm(const SrmFile& file, const SrmDecodeOptions& opt
   // Every vertex of the replayed hierarchy (levels <= `level`) is a corner
   // of some triangle of the level mesh: the mesh is already compact.
   out.mesh.triangles = plan.take_triangles();
-  out.crease_edges = std::move(creases);
+  out.crease_edges = crease_edges_up_to(hier, creases, level);
   return out;
 }
 

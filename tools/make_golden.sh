@@ -10,10 +10,41 @@
 # writes from a sphere built in code with creases on a third of its base
 # edges (tests/codec/srm_codec_test.cpp); no meshes are pinned, since they
 # follow the wavelet's crease rules.
+#   tools/make_golden.sh cube
+# writes tests/data/cube_creases_v3.srm: a cube of 10 x 10 squares a face
+# encoded with --creases keep at the default rate (its creases are the cube's
+# 12 edges and its faces decode flat), for the tests of normals split at
+# creases.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bin=${SRCODEC:-build/tools/srcodec}
 version="${1:-2}"
+if [[ "$version" == cube ]]; then
+  dir=$(mktemp -d)
+  trap 'rm -rf "$dir"' EXIT
+  python3 - "$dir/cube.obj" <<'PY'
+import sys
+n, index, lines, faces = 10, {}, [], []
+def vertex(p):
+    if p not in index:
+        index[p] = len(index) + 1
+        lines.append('v %g %g %g' % p)
+    return index[p]
+for axis in range(3):
+    for s in (-1, 1):
+        def at(i, j):  # both faces of an axis facing out
+            p = [0, 0, 0]
+            p[axis], p[(axis + 1) % 3], p[(axis + 2) % 3] = s, *((i, j) if s > 0 else (j, i))
+            return tuple(2 * c / n - 1 if k != axis else c for k, c in enumerate(p))
+        for i in range(n):
+            for j in range(n):
+                a, b, c, d = (vertex(at(*q)) for q in ((i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)))
+                faces += ['f %d %d %d' % (a, b, c), 'f %d %d %d' % (a, c, d)]
+open(sys.argv[1], 'w').write('\n'.join(lines + faces) + '\n')
+PY
+  "$bin" encode "$dir/cube.obj" -o tests/data/cube_creases_v3.srm --levels 3 --base-vertices 40 --creases keep -q
+  exit
+fi
 if [[ "$version" == 3 ]]; then
   SRCODEC_WRITE_SAMPLE=1 "$(dirname "$bin")/../tests/srm_codec_test" \
     --gtest_filter=SrmCodecCreases.TheSampleFileHoldsThisEncodersCreases

@@ -108,30 +108,48 @@ void append_number(std::string& out, double value) {
   out.append(buffer, r.ptr);
 }
 
+// `tag` and three numbers on a line.
+template <typename Point>
+void append_point(std::string& out, const char* tag, const Point& p) {
+  out += tag;
+  append_number(out, p.x());
+  out += ' ';
+  append_number(out, p.y());
+  out += ' ';
+  append_number(out, p.z());
+  out += '\n';
+}
+
 // One line per vertex (`vertex_tag` and three numbers), then one per
 // triangle (`face_tag` and three indices counted from `first_index`): the
 // body of OBJ and OFF files.
 void append_text_mesh(std::string& out, const TriangleMesh& mesh, const char* vertex_tag, const char* face_tag,
                       int32_t first_index) {
   out.reserve(out.size() + mesh.positions.size() * 40 + mesh.triangles.size() * 24);
-  for (const auto& p : mesh.positions) {
-    out += vertex_tag;
-    append_number(out, p.x());
-    out += ' ';
-    append_number(out, p.y());
-    out += ' ';
-    append_number(out, p.z());
-    out += '\n';
-  }
+  for (const auto& p : mesh.positions) append_point(out, vertex_tag, p);
   for (const auto& t : mesh.triangles) {
     out += face_tag + std::to_string(t[0] + first_index) + ' ' + std::to_string(t[1] + first_index) + ' ' +
            std::to_string(t[2] + first_index) + '\n';
   }
 }
 
-std::string obj_text(const TriangleMesh& mesh) {
+// With normals: the vertices, a `vn` line per normal (floats, written as
+// such), and each corner as `v//vn`.
+std::string obj_text(const TriangleMesh& mesh, const SectorNormals* normals) {
   std::string out = "# written by srcodec\n";
-  append_text_mesh(out, mesh, "v ", "f ", 1);
+  if (normals == nullptr) {
+    append_text_mesh(out, mesh, "v ", "f ", 1);
+    return out;
+  }
+  out.reserve(out.size() + mesh.positions.size() * 40 + normals->normals.size() * 36 + mesh.triangles.size() * 40);
+  for (const auto& p : mesh.positions) append_point(out, "v ", p);
+  for (const auto& n : normals->normals) append_point(out, "vn ", n.cast<double>());
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    out += 'f';
+    for (int k = 0; k < 3; ++k)
+      out += ' ' + std::to_string(mesh.triangles[t][k] + 1) + "//" + std::to_string(normals->corners[t][k] + 1);
+    out += '\n';
+  }
   return out;
 }
 
@@ -191,10 +209,10 @@ std::string stl_bytes(const TriangleMesh& mesh) {
 
 }  // namespace
 
-Status write_mesh(const TriangleMesh& mesh, const std::string& path) {
+Status write_mesh(const TriangleMesh& mesh, const std::string& path, const SectorNormals* normals) {
   const std::string ext = file_extension(path);
   std::string bytes;
-  if (ext == ".obj") bytes = obj_text(mesh);
+  if (ext == ".obj") bytes = obj_text(mesh, normals);
   else if (ext == ".ply") bytes = ply_bytes(mesh);
   else if (ext == ".off") bytes = off_text(mesh);
   else if (ext == ".stl") bytes = stl_bytes(mesh);

@@ -8,6 +8,7 @@
 
 #include <string>
 
+#include "format/crease_normals.h"
 #include "format/mesh.h"
 #include "format/mesh_files/mesh_clean.h"
 #include "format/status.h"
@@ -21,10 +22,13 @@ StatusOr<PolygonMesh> read_polygon_mesh(const std::string& path);
 // cleaning changed.
 StatusOr<TriangleMesh> read_triangle_mesh(const std::string& path, CleanReport* report = nullptr);
 
-// Writes OBJ or PLY (binary little-endian) by the path's extension. The file
-// is written beside the target and renamed into place, so a failure never
-// leaves a partial file or damages one that was there.
-Status write_mesh(const TriangleMesh& mesh, const std::string& path);
+// Writes OBJ, PLY (binary little-endian), OFF or STL by the path's
+// extension. The file is written beside the target and renamed into place,
+// so a failure never leaves a partial file or damages one that was there.
+// With `normals` (crease_normals' of `mesh`), an OBJ gets a `vn` line per
+// normal and faces `f v//vn`; the other formats have no normals per corner
+// and are written without them.
+Status write_mesh(const TriangleMesh& mesh, const std::string& path, const SectorNormals* normals = nullptr);
 
 // Lower-case extension with its dot (".obj"), or "" if none.
 std::string file_extension(const std::string& path);

@@ -43,11 +43,12 @@ struct Decoded {
   // The bytes end inside the base mesh: `mesh` holds the base triangles
   // decoded before the cut (maybe none), at level 0.
   bool base_cut = false;
-  // The base mesh's edges along which the surface is sharp (the encoder's
-  // creases): two vertex ids of `mesh` per edge, the smaller first, sorted.
-  // Base vertices are the first vertices of the mesh at every level, so the
-  // ids hold at any level; the mesh's edges that refine a crease edge are
-  // sharp too. Empty for a file without creases.
+  // The edges of `mesh` along which the surface is sharp (the encoder's
+  // creases, at `level`: a base edge the finer levels split gives its
+  // halves): two vertex ids of `mesh` per edge, the smaller first, sorted.
+  // corner_normals (<srcodec/mesh.h>) shades the mesh with them sharp. Empty
+  // for a file without creases. (FileInfo::crease_edges counts the base
+  // mesh's, which are these at level 0.)
   std::vector<uint32_t> crease_edges;
   // The bytes end inside the creases: `mesh` is the base mesh (level 0) and
   // crease_edges is empty.
@@ -68,7 +69,8 @@ struct FileInfo {
   double bits_per_vertex = 0;   // 8 file_bytes / input_vertices
   uint64_t base_vertices = 0, base_triangles = 0, base_bytes = 0;
   // The creases (format version 3): the chunk's bytes (0: a file without
-  // creases) and how many base edges it marks; -1 when that is not known
+  // creases) and how many base edges it marks (a decoded level's
+  // Decoded::crease_edges refine them); -1 when that is not known
   // (the bytes end before the base mesh and creases are whole, or they do
   // not decode).
   uint64_t crease_bytes = 0;

@@ -33,4 +33,33 @@ StatusOr<Mesh> read_mesh(const std::string& path);
 // whatever was there untouched. OBJ and OFF keep every bit of each position.
 Status write_mesh(const std::string& path, const Mesh& mesh);
 
+// Normals that keep a mesh's sharp edges sharp when it is shaded. A vertex
+// has one normal per sector, the fan of its triangles between two crease
+// edges: the area-weighted average of their normals, so that light is not
+// averaged across a crease. A vertex on no crease edge, or where a crease
+// ends (a dart), has one: the usual smooth vertex normal.
+struct CornerNormals {
+  // x, y, z of each normal, unit length (zero where its triangles have no
+  // area). Numbered vertex by vertex, at least one per vertex: without
+  // crease edges, normal v is vertex v's.
+  std::vector<float> normals;
+  std::vector<uint32_t> vertices;  // the vertex of each normal
+  // Per triangle corner, as Mesh::triangles: the index of its normal. A
+  // renderer that takes one normal per vertex draws a vertex per normal (at
+  // the position of `vertices`) with `corners` as the triangles.
+  std::vector<uint32_t> corners;
+};
+
+// The normals of `mesh` split at `crease_edges` (two vertex ids per edge, as
+// Decoded::crease_edges; a pair that is not an edge of the mesh splits
+// nothing). Errors: a mesh write_mesh would refuse, an odd count or an id
+// out of range in `crease_edges`.
+StatusOr<CornerNormals> corner_normals(const Mesh& mesh, const std::vector<uint32_t>& crease_edges);
+
+// write_mesh for a mesh with sharp edges (Decoded::crease_edges): an OBJ
+// gets corner_normals' normals (a `vn` line each, faces `f v//vn`), so that
+// viewers shade the creases sharp. Without crease edges, and in PLY, OFF and
+// STL, which have no normals per corner, the file is write_mesh's.
+Status write_mesh(const std::string& path, const Mesh& mesh, const std::vector<uint32_t>& crease_edges);
+
 }  // namespace srcodec

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -216,45 +218,85 @@ TEST(DecoderApi, TruncateKeepsAValidSmallerFile) {
 namespace srcodec {
 namespace {
 
+// The base crease each crease edge of a finer level refines: from a base
+// vertex along the crease edges through new vertices (each on one crease,
+// so on two of its edges) to the next base vertex.
+std::vector<std::array<uint32_t, 2>> base_creases_refined(const std::vector<uint32_t>& edges, size_t base_vertices) {
+  std::map<uint32_t, std::vector<uint32_t>> next;
+  for (size_t k = 0; k < edges.size(); k += 2) {
+    next[edges[k]].push_back(edges[k + 1]);
+    next[edges[k + 1]].push_back(edges[k]);
+  }
+  std::vector<std::array<uint32_t, 2>> out;
+  for (const auto& [a, ends] : next) {
+    if (a >= base_vertices) continue;
+    for (uint32_t at : ends) {
+      uint32_t from = a;
+      while (at >= base_vertices && next[at].size() == 2) {
+        const uint32_t after = next[at][0] == from ? next[at][1] : next[at][0];
+        from = at;
+        at = after;
+      }
+      if (a < at) out.push_back({a, at});
+    }
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 // tests/data/creases_v3.srm (a sphere with creases on 10 of its 30 base
-// edges): decode gives them as vertex ids of the mesh at every level, a
-// prefix cut inside them gives the base mesh, inspect counts them.
-TEST(DecoderApi, CreasesAsVertexIdsOfTheMeshAtEveryLevel) {
+// edges): decode gives the crease edges of the mesh of its level, those
+// the codec's decode gives, each an edge of the mesh, which chain up into
+// the base creases; a prefix cut inside them gives the base mesh, inspect
+// counts the base creases.
+TEST(DecoderApi, CreasesAreEdgesOfTheMeshOfTheLevel) {
   const std::vector<uint8_t> file = sample_file("creases_v3.srm");
   const SrmFile layout = parse_srm(file.data(), file.size()).value();
   ASSERT_TRUE(layout.header.has_creases);
+  std::vector<std::array<uint32_t, 2>> base;
   std::vector<uint32_t> finest;
-  for (int level = -1; level <= 3; ++level) {
+  for (int level = 0; level <= 3; ++level) {
     DecodeOptions options;
     options.level = level;
     StatusOr<Decoded> d = decode(file.data(), file.size(), options);
     ASSERT_TRUE(d.ok()) << d.status().message();
     const DecodedSrm expected = codec_decode(file, file.size(), level);
-    ASSERT_EQ(d->crease_edges.size(), 20u);
+    ASSERT_EQ(d->crease_edges.size(), 2 * expected.crease_edges.size());
     for (size_t k = 0; k < expected.crease_edges.size(); ++k) {
       EXPECT_EQ(d->crease_edges[2 * k], static_cast<uint32_t>(expected.crease_edges[k][0]));
       EXPECT_EQ(d->crease_edges[2 * k + 1], static_cast<uint32_t>(expected.crease_edges[k][1]));
     }
     EXPECT_FALSE(d->creases_cut);
     expect_same_mesh(d->mesh, expected.mesh);
-    // Each crease is an edge of the base mesh, whose vertices keep their ids.
-    const StatusOr<Decoded> base = decode(file.data(), file.size(), DecodeOptions{0, 0, uint64_t{1} << 22, true});
+    std::set<std::array<uint32_t, 2>> mesh_edges;
+    for (size_t t = 0; t < d->mesh.triangle_count(); ++t)
+      for (int c = 0; c < 3; ++c) {
+        const uint32_t a = d->mesh.triangles[3 * t + c], b = d->mesh.triangles[3 * t + (c + 1) % 3];
+        mesh_edges.insert({std::min(a, b), std::max(a, b)});
+      }
+    std::vector<std::array<uint32_t, 2>> pairs;
     for (size_t k = 0; k < d->crease_edges.size(); k += 2) {
-      bool edge = false;
-      for (size_t t = 0; t < base->mesh.triangle_count() && !edge; ++t)
-        for (int c = 0; c < 3; ++c) {
-          const uint32_t a = base->mesh.triangles[3 * t + c], b = base->mesh.triangles[3 * t + (c + 1) % 3];
-          edge = edge || (std::min(a, b) == d->crease_edges[k] && std::max(a, b) == d->crease_edges[k + 1]);
-        }
-      EXPECT_TRUE(edge) << k;
-      // The same vertex at this level as at level 0: near where it was (the
-      // base edges are about 1 long; the finer levels move it a little).
-      for (size_t end = k; end <= k + 1; ++end)
-        for (int c = 0; c < 3; ++c)
-          EXPECT_NEAR(d->mesh.positions[3 * d->crease_edges[end] + c],
-                      base->mesh.positions[3 * d->crease_edges[end] + c], 0.1);
+      pairs.push_back({d->crease_edges[k], d->crease_edges[k + 1]});
+      EXPECT_LT(pairs.back()[0], pairs.back()[1]);
+      EXPECT_TRUE(mesh_edges.count(pairs.back())) << level << ": " << k;
     }
-    if (level == -1) finest = d->crease_edges;
+    EXPECT_TRUE(std::is_sorted(pairs.begin(), pairs.end()));
+    const std::vector<std::array<uint32_t, 2>> chains =
+        base_creases_refined(d->crease_edges, layout.header.base_vertices);
+    if (level == 0) {
+      ASSERT_EQ(d->crease_edges.size(), 20u);
+      base = chains;
+    } else {
+      EXPECT_GT(d->crease_edges.size(), 20u) << level;  // some were split
+    }
+    EXPECT_EQ(chains, base) << level;
+    finest = d->crease_edges;
+  }
+  // The finest level by default, on one thread or two.
+  for (bool threads : {false, true}) {
+    DecodeOptions options;
+    options.threads = threads;
+    EXPECT_EQ(decode(file.data(), file.size(), options)->crease_edges, finest);
   }
   DecodeOptions cut;
   cut.max_bytes = layout.creases.offset + layout.creases.declared - 1;

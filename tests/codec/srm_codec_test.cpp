@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "format/file_io.h"
+#include "format/semi_regular/creases.h"
 #include "tests/test_util.h"
 
 namespace srcodec {
@@ -347,21 +348,25 @@ Case make_crease_case(int levels, bool adaptive, uint32_t seed) {
   return c;
 }
 
-// Per decoded base vertex, the remesher's: the base vertex nearest to its
-// position in the whole stream's finest mesh (which is within 1e-3 of the
-// remesh, and base vertices are a full edge apart).
+// Per decoded vertex, the remesher's: the vertex nearest to its position in
+// the whole stream's finest mesh (which is within 1e-3 of the remesh; the
+// finest level's vertices are a tenth of a base edge apart). A vertex keeps
+// its id at every level of a file.
 std::vector<int32_t> decoded_to_remesher(const DecodedSrm& whole, const Case& c) {
-  std::vector<int32_t> out(whole.base_vertices);
+  std::vector<int32_t> out(whole.mesh.positions.size());
   for (size_t v = 0; v < out.size(); ++v) {
     double best = 1e300;
-    for (int32_t b = 0; b < c.srm.hierarchy.base_vertex_count(); ++b) {
-      const double d = (whole.mesh.positions[v] - c.srm.positions[b]).norm();
-      if (d < best) best = d, out[v] = b;
+    for (size_t r = 0; r < c.srm.positions.size(); ++r) {
+      const double d = (whole.mesh.positions[v] - c.srm.positions[r]).norm();
+      if (d < best) best = d, out[v] = static_cast<int32_t>(r);
     }
   }
   return out;
 }
 
+// The decoder's crease edges of every level are the encoder's of that level
+// (crease_edges_up_to of its creases), in the file's numbering: level 0's are
+// the base creases, which the base mesh coder renumbers.
 TEST(SrmCodecCreases, TheDecoderGetsTheEncodersCreasesInTheFilesNumbering) {
   for (bool adaptive : {false, true}) {
     const Case c = make_crease_case(3, adaptive, 2);
@@ -371,23 +376,27 @@ TEST(SrmCodecCreases, TheDecoderGetsTheEncodersCreasesInTheFilesNumbering) {
     EXPECT_TRUE(e.header.has_creases);
     const DecodedSrm whole = decode_bytes(e.bytes).value();
     EXPECT_FALSE(whole.creases_cut);
-    ASSERT_EQ(whole.crease_edges.size(), c.srm.crease_edges.size());
-    EXPECT_TRUE(std::is_sorted(whole.crease_edges.begin(), whole.crease_edges.end()));
     const std::vector<int32_t> to_remesher = decoded_to_remesher(whole, c);
     int moved = 0;
-    std::vector<std::array<int32_t, 2>> back;
-    for (const auto& edge : whole.crease_edges) {
-      EXPECT_LT(edge[0], edge[1]);
-      const int32_t a = to_remesher[edge[0]], b = to_remesher[edge[1]];
-      back.push_back({std::min(a, b), std::max(a, b)});
-      moved += (a != edge[0]) + (b != edge[1]);
+    for (int level = 0; level <= 3; ++level) {
+      const DecodedSrm d = decode_bytes(e.bytes, 0, level).value();
+      EXPECT_TRUE(std::is_sorted(d.crease_edges.begin(), d.crease_edges.end()));
+      std::vector<std::array<int32_t, 2>> back;
+      for (const auto& edge : d.crease_edges) {
+        EXPECT_LT(edge[0], edge[1]);
+        const int32_t a = to_remesher[edge[0]], b = to_remesher[edge[1]];
+        back.push_back({std::min(a, b), std::max(a, b)});
+        if (level == 0) moved += (a != edge[0]) + (b != edge[1]);
+      }
+      std::sort(back.begin(), back.end());
+      EXPECT_EQ(back, crease_edges_up_to(c.srm.hierarchy, c.srm.crease_edges, level))
+          << (adaptive ? "adaptive" : "uniform") << " level " << level;
+      if (level == 0) {
+        EXPECT_EQ(back, c.srm.crease_edges);
+      }
     }
-    std::sort(back.begin(), back.end());
-    EXPECT_EQ(back, c.srm.crease_edges) << (adaptive ? "adaptive" : "uniform");
     EXPECT_GT(moved, 0);  // the base mesh coder renumbers: a test of the renumbering, not of luck
-    // Every level and the threads see the same creases.
-    for (int level = 0; level <= 3; ++level)
-      EXPECT_EQ(decode_bytes(e.bytes, 0, level)->crease_edges, whole.crease_edges) << level;
+    EXPECT_EQ(whole.crease_edges, decode_bytes(e.bytes, 0, 3)->crease_edges);
   }
 }
 
@@ -421,12 +430,13 @@ TEST(SrmCodecCreases, OnlyAFileWithCreasesIsVersion3) {
 // Every prefix of a small version-3 file decodes or fails cleanly: the header
 // cut fails; inside the base mesh, its first triangles; inside the creases,
 // the whole base mesh at level 0 without creases; from the end of the
-// creases on, all the creases.
+// creases on, all the creases, at the level the prefix decodes to.
 TEST(SrmCodecCreases, EveryPrefixDecodesOrFailsCleanly) {
   const Case c = make_crease_case(2, true, 5);
   const EncodedSrm e = encode_srm(c.srm, c.input).value();
   const SrmFile layout = parse_srm(e.bytes.data(), e.bytes.size()).value();
-  const DecodedSrm whole = decode_bytes(e.bytes).value();
+  std::vector<std::vector<std::array<int32_t, 2>>> at_level;
+  for (int level = 0; level <= 2; ++level) at_level.push_back(decode_bytes(e.bytes, 0, level)->crease_edges);
   const uint64_t creases_begin = layout.creases.offset, creases_end = creases_begin + layout.creases.declared;
   const DecodedSrm base_only = decode_bytes(e.bytes, creases_end, 0).value();
   ASSERT_GT(layout.creases.declared, 1u);
@@ -453,7 +463,7 @@ TEST(SrmCodecCreases, EveryPrefixDecodesOrFailsCleanly) {
       EXPECT_TRUE(d->mesh.positions == base_only.mesh.positions) << n;
     } else {
       EXPECT_FALSE(d->creases_cut) << n;
-      EXPECT_EQ(d->crease_edges, whole.crease_edges) << n;
+      EXPECT_EQ(d->crease_edges, at_level[d->level]) << n;
       EXPECT_GE(d->bytes_used, creases_end) << n;
     }
   }
@@ -505,7 +515,7 @@ TEST(SrmCodecCreases, ADamagedCreaseChunkIsRefusedByName) {
     }
     for (const auto& edge : r->crease_edges) {
       EXPECT_LT(edge[0], edge[1]);
-      EXPECT_LT(static_cast<size_t>(edge[1]), r->base_vertices);
+      EXPECT_LT(static_cast<size_t>(edge[1]), r->mesh.positions.size());
     }
   }
   EXPECT_GT(refused, 50);
@@ -584,7 +594,7 @@ TEST(SrmCodecCreases, TheSampleFileHoldsThisEncodersCreases) {
   ASSERT_EQ(theirs.flags.size(), ours.flags.size());
   for (size_t j = 0; j < ours.flags.size(); ++j) EXPECT_EQ(theirs.flags[j].bytes, ours.flags[j].bytes);
   EXPECT_EQ(decode_bytes(bytes)->crease_edges, decode_bytes(sample)->crease_edges);
-  EXPECT_EQ(decode_bytes(bytes)->crease_edges.size(), c.srm.crease_edges.size());
+  EXPECT_EQ(decode_bytes(bytes, 0, 0)->crease_edges.size(), c.srm.crease_edges.size());
 }
 
 }  // namespace

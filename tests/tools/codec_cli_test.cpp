@@ -1,9 +1,17 @@
 // `srcodec encode`, `decode` and `info` on .srm files, as a user meets them.
 #include <gtest/gtest.h>
+#include <srcodec/srcodec.h>
 
+#include <array>
+#include <cmath>
 #include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "format/file_io.h"
+#include "format/mesh.h"
+#include "format/mesh_files/mesh_io.h"
 #include "tests/test_util.h"
 
 namespace srcodec {
@@ -152,6 +160,95 @@ TEST(CodecCli, CreasesKeepACubesEdgesThroughTheCoding) {
   EXPECT_NE(bad.exit_code, 0);
   EXPECT_NE(bad.err.find("--creases sharp: use auto, keep or off"), std::string::npos) << bad.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("d.srm")));
+}
+
+// An OBJ's vertices, normals (`vn`) and triangles' corners `v//vn`, counted from 0.
+struct ObjWithNormals {
+  std::vector<Eigen::Vector3d> positions, normals;
+  std::vector<std::array<int, 6>> faces;  // v0 n0 v1 n1 v2 n2
+};
+
+ObjWithNormals read_obj_with_normals(const std::string& text) {
+  ObjWithNormals out;
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream in(line);
+    std::string tag;
+    in >> tag;
+    Eigen::Vector3d p;
+    if (tag == "v" || tag == "vn") {
+      in >> p.x() >> p.y() >> p.z();
+      (tag == "v" ? out.positions : out.normals).push_back(p);
+    } else if (tag == "f") {
+      std::array<int, 6> f{};
+      char slash;
+      for (int k = 0; k < 3; ++k) in >> f[2 * k] >> slash >> slash >> f[2 * k + 1];
+      for (int& i : f) --i;
+      out.faces.push_back(f);
+    }
+  }
+  return out;
+}
+
+// `decode` to OBJ of a file with creases (tests/data/cube_creases_v3.srm, a
+// cube creased at its 12 edges, made by tools/make_golden.sh cube) writes
+// normals split at them: every normal is a face normal of the cube, and so
+// is each corner's triangle's, but for two slivers folded over at a corner.
+// To the other formats, and for files without creases, it writes what
+// write_mesh writes of the decoded mesh.
+TEST(CodecCli, DecodeWritesNormalsSplitAtTheCreasesToObj) {
+  test::ScratchDir dir;
+  const std::string cube = test::source_path("tests/data/cube_creases_v3.srm");
+  auto d = run_srcodec("decode --json " + q(cube) + " -o " + q(dir.file("cube.obj")));
+  ASSERT_EQ(d.exit_code, 0) << d.err;
+  EXPECT_NE(d.out.find("\"crease_normals\": true"), std::string::npos) << d.out;
+  EXPECT_GT(json_number(d.out, "crease_edges"), 31) << d.out;  // the base's 31, split by the levels
+  const ObjWithNormals obj = read_obj_with_normals(read_file_bytes(dir.file("cube.obj")).value());
+  ASSERT_EQ(obj.positions.size(), json_number(d.out, "vertices"));
+  ASSERT_EQ(obj.faces.size(), json_number(d.out, "triangles"));
+  EXPECT_GT(obj.normals.size(), obj.positions.size());
+  const double close = std::cos(0.5 * std::acos(-1.0) / 180);  // half a degree
+  for (const Eigen::Vector3d& n : obj.normals) EXPECT_GT(n.cwiseAbs().maxCoeff(), close) << n.transpose();
+  int off_face = 0;
+  for (const auto& f : obj.faces) {
+    const Eigen::Vector3d& a = obj.positions[f[0]];
+    const Eigen::Vector3d face = (obj.positions[f[2]] - a).cross(obj.positions[f[4]] - a).normalized();
+    for (int k = 0; k < 3; ++k) off_face += face.dot(obj.normals[f[2 * k + 1]]) < close;
+  }
+  EXPECT_LE(off_face, 6);
+  // The OBJ's mesh is the decoded mesh; the PLY has no normals.
+  const std::string bytes = read_file_bytes(cube).value();
+  const StatusOr<Decoded> decoded = decode(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size());
+  ASSERT_TRUE(decoded.ok()) << decoded.status().message();
+  const StatusOr<PolygonMesh> as_written = read_polygon_mesh(dir.file("cube.obj"));  // not cleaned
+  ASSERT_TRUE(as_written.ok()) << as_written.status().message();
+  ASSERT_EQ(3 * as_written->positions.size(), decoded->mesh.positions.size());
+  // (As floats: a coordinate that is a float is written as the float's
+  // shortest text, which the reader takes for the nearest double.)
+  for (size_t v = 0; v < as_written->positions.size(); ++v)
+    for (int k = 0; k < 3; ++k) {
+      const double coordinate = decoded->mesh.positions[3 * v + k];
+      ASSERT_EQ(static_cast<float>(as_written->positions[v][k]), static_cast<float>(coordinate)) << v;
+    }
+  ASSERT_EQ(as_written->corners.size(), decoded->mesh.triangles.size());
+  for (size_t c = 0; c < as_written->corners.size(); ++c)
+    ASSERT_EQ(static_cast<uint32_t>(as_written->corners[c]), decoded->mesh.triangles[c]) << c;
+  ASSERT_TRUE(write_mesh(dir.file("plain.ply"), decoded->mesh).ok());
+  ASSERT_EQ(run_srcodec("decode " + q(cube) + " -o " + q(dir.file("cube.ply"))).exit_code, 0);
+  EXPECT_EQ(read_file_bytes(dir.file("cube.ply")).value(), read_file_bytes(dir.file("plain.ply")).value());
+  // Without creases: write_mesh's bytes, no normals.
+  for (const char* name : {"spot_default.srm", "golden_v2.srm"}) {
+    const std::string path = test::source_path(std::string("tests/data/") + name);
+    auto plain = run_srcodec("decode --json " + q(path) + " -o " + q(dir.file("plain.obj")));
+    ASSERT_EQ(plain.exit_code, 0) << plain.err;
+    EXPECT_NE(plain.out.find("\"crease_normals\": false"), std::string::npos) << plain.out;
+    const std::string file = read_file_bytes(path).value();
+    const StatusOr<Decoded> mesh = decode(reinterpret_cast<const uint8_t*>(file.data()), file.size());
+    ASSERT_TRUE(write_mesh(dir.file("library.obj"), mesh->mesh).ok());
+    const std::string written = read_file_bytes(dir.file("plain.obj")).value();
+    EXPECT_EQ(written, read_file_bytes(dir.file("library.obj")).value()) << name;
+    EXPECT_EQ(written.find("vn"), std::string::npos) << name;
+  }
 }
 
 // An encode stopped by the user (Ctrl-C, after a second) leaves no partial

@@ -1,6 +1,7 @@
 // `srcodec decode IN.srm -o OUT.obj [--level L] [--bytes N]`: the mesh of
 // level L from the whole file or from its first N bytes, through the public
-// decoder (<srcodec/decoder.h>).
+// decoder (<srcodec/decoder.h>). The OBJ of a file with creases has normals
+// split at them (write_mesh with crease edges), so viewers show them sharp.
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -11,6 +12,7 @@
 #include <algorithm>
 
 #include "format/file_io.h"
+#include "format/mesh_files/mesh_io.h"
 #include "tools/srcodec/commands.h"
 #include "tools/srcodec/json_writer.h"
 
@@ -38,8 +40,9 @@ Status run_decode(const DecodeCliOptions& o) {
   StatusOr<Decoded> decoded = decode(data, bytes.size(), options);
   if (!decoded.ok()) return decoded.status().with_context(o.input);
   SRCODEC_ASSIGN_OR_RETURN(const FileInfo info, inspect(data, bytes.size()));
-  SRCODEC_RETURN_IF_ERROR(write_mesh(o.output, decoded->mesh));
+  SRCODEC_RETURN_IF_ERROR(write_mesh(o.output, decoded->mesh, decoded->crease_edges));
   const uint64_t present = o.bytes > 0 ? std::min<uint64_t>(o.bytes, bytes.size()) : bytes.size();
+  const bool crease_normals = !decoded->crease_edges.empty() && file_extension(o.output) == ".obj";
   if (o.json) {
     JsonWriter j;
     j.field("input", o.input)
@@ -52,6 +55,7 @@ Status run_decode(const DecodeCliOptions& o) {
         .field("base_cut", decoded->base_cut)
         .field("crease_edges", decoded->crease_edges.size() / 2)
         .field("creases_cut", decoded->creases_cut)
+        .field("crease_normals", crease_normals)
         .field("bytes_used", static_cast<size_t>(decoded->bytes_used))
         .field("bytes_present", static_cast<size_t>(present))
         .field("file_bytes", static_cast<size_t>(info.declared_bytes));
@@ -61,6 +65,9 @@ Status run_decode(const DecodeCliOptions& o) {
                 decoded->level, info.levels, decoded->mesh.vertex_count(), decoded->mesh.triangle_count(),
                 static_cast<unsigned long long>(decoded->bytes_used),
                 static_cast<unsigned long long>(info.declared_bytes), o.output.c_str());
+    if (crease_normals)
+      std::printf("  normals split at its %zu crease edges, so that viewers shade them sharp\n",
+                  decoded->crease_edges.size() / 2);
     if (decoded->base_cut)
       std::printf("  the file was cut inside its base mesh: %zu of its %llu triangles decoded\n",
                   decoded->mesh.triangle_count(), static_cast<unsigned long long>(info.base_triangles));
@@ -79,7 +86,10 @@ Command add_decode_command(CommandLine& cli) {
   auto o = std::make_shared<DecodeCliOptions>();
   Subcommand& cmd = cli.add_command("decode", "Decode an .srm file to a mesh, at any level, from any prefix");
   cmd.positional("file", o->input, "The .srm file");
-  cmd.option("-o,--output", o->output, "Mesh to write (OBJ, PLY, OFF, STL by extension)").required();
+  cmd.option("-o,--output", o->output,
+             "Mesh to write (OBJ, PLY, OFF, STL by extension). A file with creases: an OBJ gets normals that keep them "
+             "sharp (vn lines, split at the crease edges); PLY, OFF and STL are written without normals per corner")
+      .required();
   cmd.option("--level", o->level, "Level to decode: 0 is the base mesh (default: the finest)").range(0, 12);
   cmd.option("--bytes", o->bytes, "Decode from the first N bytes only").positive();
   cmd.option("--max-vertices", o->max_vertices, "Refuse files that decode to more vertices than this").show_default();

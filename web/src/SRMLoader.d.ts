@@ -1,6 +1,13 @@
 // Types of srcodec's three.js loader (src/SRMLoader.js).
 import { BufferGeometry, Loader, LoadingManager } from 'three';
-import type { Decoder, DecodeError, ProgressiveOptions, RefineEvent } from './index.js';
+import type { DecodedMesh, Decoder, DecodeError, ProgressiveOptions, RefineEvent } from './index.js';
+
+/**
+ * A decoded mesh as an indexed BufferGeometry. With `mesh.cornerNormals` (a mesh with crease edges decoded with
+ * `cornerNormals: true`), a vertex per normal, so that the creases shade sharp; else the mesh's vertices, with
+ * computeVertexNormals when `normals` is true (the default).
+ */
+export function meshGeometry(mesh: DecodedMesh, normals?: boolean): BufferGeometry;
 
 /** What the loader records in geometry.userData.srcodec. */
 export interface SRMGeometryInfo {
@@ -9,8 +16,13 @@ export interface SRMGeometryInfo {
   bytesReceived: number;
   lastCompletePlane: number;
   baseCut: boolean;
-  /** DecodedMesh.creaseEdges: two vertex ids per base edge along which the surface is sharp. */
+  /** DecodedMesh.creaseEdges: two vertex ids per edge of the decoded mesh along which the surface is sharp. */
   creaseEdges: Uint32Array;
+  /**
+   * When the normals are split at creases, the decoded mesh's vertex of each vertex of the geometry (a crease vertex
+   * has one per sector); null when the geometry's vertices are the mesh's.
+   */
+  meshVertices: Uint32Array | null;
   triangles: number;
   /** How long the decode took (refinements only). */
   milliseconds?: number;
@@ -21,7 +33,10 @@ export interface SRMGeometryInfo {
 export class SRMLoader extends Loader<BufferGeometry> {
   constructor(manager?: LoadingManager);
   decodeOptions: Omit<ProgressiveOptions, 'onRefine'>;
-  /** Compute vertex normals for lighting (default true): .srm files carry positions only. */
+  /**
+   * Compute normals for lighting (default true): .srm files carry positions only. A file with creases gets normals
+   * split at them (meshGeometry), one without computeVertexNormals'.
+   */
   computeNormals: boolean;
   setDecoder(decoder: Decoder | Promise<Decoder>): this;
   setDecodeOptions(options: Omit<ProgressiveOptions, 'onRefine'>): this;

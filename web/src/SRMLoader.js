@@ -10,6 +10,33 @@ import { BufferAttribute, BufferGeometry, Loader } from 'three';
 import { createDecoder } from './decoder.js';
 import { ProgressiveDecoder, decodeStream } from './stream.js';
 
+// A decoded mesh as a three.js BufferGeometry, indexed. With its corner
+// normals (decode's cornerNormals option, for a mesh with crease edges), a
+// vertex per normal, so that the creases shade sharp; else the mesh's own
+// vertices, and with `normals` the smooth normals of computeVertexNormals.
+export function meshGeometry(mesh, normals = true) {
+  const geometry = new BufferGeometry();
+  const split = normals ? mesh.cornerNormals : null;
+  if (split) {
+    const { vertices } = split;
+    const positions = new Float32Array(3 * vertices.length);
+    for (let i = 0, at = 0; i < vertices.length; ++i, at += 3) {
+      const from = 3 * vertices[i];
+      positions[at] = mesh.positions[from];
+      positions[at + 1] = mesh.positions[from + 1];
+      positions[at + 2] = mesh.positions[from + 2];
+    }
+    geometry.setAttribute('position', new BufferAttribute(positions, 3));
+    geometry.setAttribute('normal', new BufferAttribute(split.normals, 3));
+    geometry.setIndex(new BufferAttribute(split.corners, 1));
+    return geometry;
+  }
+  geometry.setAttribute('position', new BufferAttribute(mesh.positions, 3));
+  geometry.setIndex(new BufferAttribute(mesh.indices, 1));
+  if (normals) geometry.computeVertexNormals();
+  return geometry;
+}
+
 // What three.js's loaders hand to onProgress; a plain object where there is
 // no ProgressEvent (outside browsers).
 function progressEvent(loaded, total) {
@@ -23,7 +50,9 @@ export class SRMLoader extends Loader {
   constructor(manager) {
     super(manager);
     this.decodeOptions = { level: -1, maxVertices: undefined, everyBytes: 0 };
-    this.computeNormals = true;  // .srm files carry positions only: light needs normals
+    // .srm files carry positions only: light needs normals (split at the
+    // file's creases, if it has any).
+    this.computeNormals = true;
   }
 
   // The decoder to use (from createDecoder), or a promise of one; by
@@ -66,7 +95,7 @@ export class SRMLoader extends Loader {
   // Decodes a whole file in memory (an ArrayBuffer or Uint8Array).
   parse(buffer, onLoad, onError) {
     this.#getDecoder().then((decoder) => {
-      const progressive = new ProgressiveDecoder(decoder, this.decodeOptions);
+      const progressive = new ProgressiveDecoder(decoder, this.#options());
       progressive.push(buffer instanceof ArrayBuffer ? new Uint8Array(buffer) : buffer);
       onLoad(this.#geometry(progressive.end(), progressive.error, progressive.bytesReceived));
     }).catch((error) => { if (onError) onError(error); else throw error; });
@@ -82,7 +111,7 @@ export class SRMLoader extends Loader {
     const total = Number(response.headers.get('Content-Length')) || 0;
     let last = null;
     const options = {
-      ...this.decodeOptions,
+      ...this.#options(),
       onRefine: (mesh, event) => {
         last = this.#geometry(mesh, null, event.bytesReceived);
         last.userData.srcodec.milliseconds = event.milliseconds;
@@ -106,14 +135,17 @@ export class SRMLoader extends Loader {
     return last;
   }
 
+  // The decode options, with the corner normals the geometry needs.
+  #options() {
+    return { ...this.decodeOptions, cornerNormals: this.computeNormals };
+  }
+
   #geometry(mesh, error, bytesReceived) {
-    const geometry = new BufferGeometry();
-    geometry.setAttribute('position', new BufferAttribute(mesh.positions, 3));
-    geometry.setIndex(new BufferAttribute(mesh.indices, 1));
-    if (this.computeNormals) geometry.computeVertexNormals();
+    const geometry = meshGeometry(mesh, this.computeNormals);
     geometry.userData.srcodec = {
       level: mesh.level, bytesUsed: mesh.bytesUsed, bytesReceived, lastCompletePlane: mesh.lastCompletePlane,
-      baseCut: mesh.baseCut, creaseEdges: mesh.creaseEdges, triangles: mesh.triangleCount, error,
+      baseCut: mesh.baseCut, creaseEdges: mesh.creaseEdges, meshVertices: mesh.cornerNormals?.vertices ?? null,
+      triangles: mesh.triangleCount, error,
     };
     return geometry;
   }

@@ -112,13 +112,15 @@ class Decoder {
   // Decodes a whole .srm file or a prefix of one. Options: level (-1, the
   // finest, or 0..12), maxBytes (decode only the first maxBytes bytes; 0:
   // all), maxVertices (refuse, before allocating, a file whose level has more
-  // vertices). Throws an Error whose message is the decoder's when the bytes
-  // cannot give a mesh.
-  decode(bytes, { level = -1, maxBytes = 0, maxVertices = DEFAULT_MAX_VERTICES } = {}) {
+  // vertices), cornerNormals (for a mesh with crease edges, normals split at
+  // them: README). Throws an Error whose message is the decoder's when the
+  // bytes cannot give a mesh.
+  decode(bytes, { level = -1, maxBytes = 0, maxVertices = DEFAULT_MAX_VERTICES, cornerNormals = false } = {}) {
     checkCount('level', level, -1, 12);
     checkCount('maxBytes', maxBytes, 0, Number.MAX_SAFE_INTEGER);
     checkCount('maxVertices', maxVertices, 1, MAX_VERTICES_LIMIT);
-    return this.#call(toBytes(bytes), (e, p, n) => e.srcodec_decode(p, n, level, maxBytes, maxVertices), (e) => {
+    const run = (e, p, n) => e.srcodec_decode(p, n, level, maxBytes, maxVertices, cornerNormals ? 1 : 0);
+    return this.#call(toBytes(bytes), run, (e) => {
       const numbers = this.#numbers(e);
       const positions = new Float32Array(e.memory.buffer, e.srcodec_positions(), e.srcodec_position_count()).slice();
       const indices = new Uint32Array(e.memory.buffer, e.srcodec_indices(), e.srcodec_index_count()).slice();
@@ -127,10 +129,23 @@ class Decoder {
       return {
         positions, indices,
         level: numbers[0], bytesUsed: numbers[1], lastCompletePlane: numbers[2], baseCut: numbers[3] !== 0,
-        creasesCut: numbers[4] !== 0, creaseEdges,
+        creasesCut: numbers[4] !== 0, creaseEdges, cornerNormals: this.#cornerNormals(e, indices.length),
         vertexCount: positions.length / 3, triangleCount: indices.length / 3,
       };
     });
+  }
+
+  // The normals srcodec_decode computed (null when it did not: not asked
+  // for, or no crease edges), one corner per index.
+  #cornerNormals(e, corners) {
+    const count = e.srcodec_normal_count();
+    if (count === 0) return null;
+    const buffer = e.memory.buffer;
+    return {
+      normals: new Float32Array(buffer, e.srcodec_normals(), 3 * count).slice(),
+      vertices: new Uint32Array(buffer, e.srcodec_normal_vertices(), count).slice(),
+      corners: new Uint32Array(buffer, e.srcodec_corners(), corners).slice(),
+    };
   }
 
   // The header of a file or of a prefix that holds it: counts, the bounding

@@ -15,14 +15,31 @@ export interface DecodedMesh {
   /** The bytes end inside the base mesh: `indices` holds the base triangles decoded before the cut. */
   baseCut: boolean;
   /**
-   * The base edges along which the surface is sharp: two vertex ids each, the smaller first, sorted. Base vertices
-   * come first at every level, so the ids hold at any level. Empty for a file without creases.
+   * The edges of this mesh along which the surface is sharp (the file's creases at this level: a base edge that the
+   * finer levels split gives its halves): two vertex ids each, the smaller first, sorted by pair. Empty for a file
+   * without creases.
    */
   creaseEdges: Uint32Array;
   /** The bytes end inside the creases: the mesh is the base mesh (level 0) and creaseEdges is empty. */
   creasesCut: boolean;
+  /** With the cornerNormals option and crease edges in the mesh, normals split at them; else null. */
+  cornerNormals: CornerNormals | null;
   vertexCount: number;
   triangleCount: number;
+}
+
+/**
+ * Normals that keep the creases sharp (the C++ corner_normals): a vertex has one per sector, the fan of its triangles
+ * between two crease edges, the area-weighted average of their normals; a vertex on no crease edge has one, the
+ * smooth normal. Numbered vertex by vertex.
+ */
+export interface CornerNormals {
+  /** x, y, z of each normal, unit length (zero where its triangles have no area). */
+  normals: Float32Array;
+  /** The vertex of each normal. */
+  vertices: Uint32Array;
+  /** For each entry of `indices`, the index of its corner's normal: the triangles over a vertex per normal. */
+  corners: Uint32Array;
 }
 
 export interface DecodeOptions {
@@ -32,6 +49,8 @@ export interface DecodeOptions {
   maxBytes?: number;
   /** Refuse, before allocating, a level with more vertices (default 2^21, at most 2^22). */
   maxVertices?: number;
+  /** Also compute cornerNormals when the mesh has crease edges (default false). */
+  cornerNormals?: boolean;
 }
 
 export interface LevelInfo {
@@ -65,7 +84,10 @@ export interface FileInfo {
   baseBytes: number;
   /** The crease chunk's bytes (format version 3); 0 for a file without creases. */
   creaseBytes: number;
-  /** How many base edges are creases; null when the base mesh and creases are not all present, or damaged. */
+  /**
+   * How many base edges are creases (a decoded level's creaseEdges refine them); null when the base mesh and
+   * creases are not all present, or damaged.
+   */
   creaseEdges: number | null;
   baseBits: number;
   levels: number;
@@ -108,6 +130,8 @@ export interface RefineEvent {
 export interface ProgressiveOptions {
   level?: number;
   maxVertices?: number;
+  /** As DecodeOptions.cornerNormals. */
+  cornerNormals?: boolean;
   /** Also decode after this many new bytes (0, the default: only where a level or bit plane ends). */
   everyBytes?: number;
   onRefine?: (mesh: DecodedMesh, event: RefineEvent) => void;

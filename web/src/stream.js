@@ -34,9 +34,10 @@ export class ProgressiveDecoder {
   #last = null;      // the last mesh decoded
   #error = null;     // the last decode's error, when it failed
 
-  // options: level (-1: the finest), maxVertices, everyBytes (also decode
-  // after this many new bytes; 0: only where a level or plane ends), and
-  // onRefine(mesh, { bytesReceived, info, milliseconds }).
+  // options: level (-1: the finest), maxVertices, cornerNormals (as
+  // decoder.decode's), everyBytes (also decode after this many new bytes; 0:
+  // only where a level or plane ends), and onRefine(mesh, { bytesReceived,
+  // info, milliseconds }).
   constructor(decoder, options = {}) {
     this.#decoder = decoder;
     this.#options = { level: -1, everyBytes: 0, ...options };
@@ -142,7 +143,8 @@ export class ProgressiveDecoder {
     const started = performance.now();
     this.#decodedAt = maxBytes || this.#length;
     try {
-      const mesh = this.#decoder.decode(this.bytes, { level, maxBytes, maxVertices: this.#options.maxVertices });
+      const { maxVertices, cornerNormals } = this.#options;
+      const mesh = this.#decoder.decode(this.bytes, { level, maxBytes, maxVertices, cornerNormals });
       this.#last = mesh;
       this.#error = null;
       this.#options.onRefine?.(mesh, {

@@ -14,6 +14,8 @@ namespace {
 struct Result {
   std::vector<float> positions;  // the decoder's doubles, rounded to float32 (WebGL's vertex type)
   std::vector<uint32_t> indices;
+  // corner_normals' arrays, when asked for and the mesh has crease edges.
+  srcodec::CornerNormals normals;
   std::vector<double> numbers;  // decode's or inspect's scalars, laid out as decoder.js reads them
   std::string message;          // the Status's message when a call failed
 };
@@ -47,8 +49,10 @@ void srcodec_free(uint8_t* p) { std::free(p); }
 
 // Decodes `size` bytes at `data`; 0 on success, else the StatusCode (the
 // message is at srcodec_message()). Single-threaded: the same mesh, bit for
-// bit, as the native decoder on any number of threads.
-int srcodec_decode(const uint8_t* data, uint32_t size, int level, double max_bytes, double max_vertices) {
+// bit, as the native decoder on any number of threads. With `normals` set
+// and crease edges in the mesh, also its corner normals (<srcodec/mesh.h>),
+// so that the rule that splits them at the creases has one home.
+int srcodec_decode(const uint8_t* data, uint32_t size, int level, double max_bytes, double max_vertices, int normals) {
   srcodec::DecodeOptions options;
   options.level = level;
   options.max_bytes = to_count(max_bytes);
@@ -59,6 +63,11 @@ int srcodec_decode(const uint8_t* data, uint32_t size, int level, double max_byt
   release();
   Result& r = result();
   const srcodec::Mesh& mesh = decoded->mesh;
+  if (normals != 0 && !decoded->crease_edges.empty()) {
+    srcodec::StatusOr<srcodec::CornerNormals> split = srcodec::corner_normals(mesh, decoded->crease_edges);
+    if (!split.ok()) return fail(split.status());
+    r.normals = std::move(split).value();
+  }
   r.positions.assign(mesh.positions.begin(), mesh.positions.end());
   r.indices = std::move(decoded->mesh.triangles);
   // The scalars, then the crease edges' count and their vertex ids (a few
@@ -98,6 +107,11 @@ const float* srcodec_positions() { return result().positions.data(); }
 uint32_t srcodec_position_count() { return static_cast<uint32_t>(result().positions.size()); }
 const uint32_t* srcodec_indices() { return result().indices.data(); }
 uint32_t srcodec_index_count() { return static_cast<uint32_t>(result().indices.size()); }
+// The corner normals: 3 floats and a vertex per normal, a normal per index.
+const float* srcodec_normals() { return result().normals.normals.data(); }
+const uint32_t* srcodec_normal_vertices() { return result().normals.vertices.data(); }
+uint32_t srcodec_normal_count() { return static_cast<uint32_t>(result().normals.vertices.size()); }
+const uint32_t* srcodec_corners() { return result().normals.corners.data(); }
 const double* srcodec_numbers() { return result().numbers.data(); }
 uint32_t srcodec_number_count() { return static_cast<uint32_t>(result().numbers.size()); }
 const char* srcodec_message() { return result().message.c_str(); }

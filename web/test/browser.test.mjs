@@ -19,6 +19,7 @@ const SLOW = { rate: 2560, chunkBytes: 128 };
 const WAIT = { timeout: 30_000 };
 
 const sample = join(repository, 'tests/data/spot_default.srm');
+const cube = join(repository, 'tests/data/cube_creases_v3.srm');  // creased at its 12 edges, flat faces
 const output = fileURLToPath(new URL('../test-output/', import.meta.url));
 
 let browser;
@@ -122,6 +123,12 @@ function viewerState(page) {
         level: lastMesh.level,
         positions: Array.from(lastMesh.positions),
         indices: Array.from(lastMesh.indices),
+        cornerNormals: lastMesh.cornerNormals && {
+          normals: Array.from(lastMesh.cornerNormals.normals),
+          vertices: Array.from(lastMesh.cornerNormals.vertices),
+          corners: Array.from(lastMesh.cornerNormals.corners),
+        },
+        drawnVertices: lastMesh.drawnVertices,
       },
     };
   });
@@ -183,6 +190,9 @@ test('streams coarse to fine and ends on the C++ decoder\'s mesh', async () => {
   const got = Float32Array.from(mesh.positions);
   assert.ok(Buffer.from(got.buffer).equals(Buffer.from(expected.buffer)), 'positions are the C++ doubles as float32');
   assert.deepEqual(mesh.indices, Array.from(native.indices));
+  // No creases: the mesh's own vertices, drawn with smooth normals.
+  assert.equal(mesh.cornerNormals, null);
+  assert.equal(mesh.drawnVertices, mesh.positions.length / 3);
 
   // The first and the last refinement as drawn, and not blank.
   const images = await page.evaluate(() => {
@@ -212,6 +222,36 @@ test('streams coarse to fine and ends on the C++ decoder\'s mesh', async () => {
   const prefixMesh = await page.evaluate(() => Array.from(window.srcodecViewer.lastMesh.positions));
   assert.ok(Buffer.from(Float32Array.from(prefixMesh).buffer)
     .equals(Buffer.from(Float32Array.from(nativePrefix.positions, Math.fround).buffer)), 'the prefix\'s positions');
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
+// A file with creases is drawn with normals split at them: a vertex per
+// corner normal, each a face normal of the cube (crease corners too), where
+// smooth normals would round the edges off; without creases (above), the
+// mesh's own vertices.
+test('a cube with creases is drawn with its faces\' normals at the edges', async () => {
+  const url = await serve([cube], SLOW);
+  const { page, errors } = await openViewer(url('/viewer/?src=/file/cube_creases_v3.srm&snapshots=1'));
+  const state = await viewerState(page);
+  assert.equal(state.status, 'done');
+  assert.equal(state.error, null);
+  const mesh = state.lastMesh;
+  const native = nativeDecode(cube);
+  assert.deepEqual(mesh.indices, Array.from(native.indices));
+  assert.ok(mesh.cornerNormals, 'corner normals');
+  const { normals, vertices, corners } = mesh.cornerNormals;
+  assert.equal(mesh.drawnVertices, vertices.length);
+  assert.ok(vertices.length > mesh.positions.length / 3, 'the crease vertices are split');
+  assert.deepEqual(corners, Array.from(native.normalIndices));
+  const close = Math.cos((0.5 * Math.PI) / 180);  // half a degree
+  for (let i = 0; i < normals.length; i += 3) {
+    const axis = Math.max(...normals.slice(i, i + 3).map(Math.abs));
+    assert.ok(axis > close, `normal ${i / 3} is not a cube face's: ${normals.slice(i, i + 3)}`);
+  }
+  const image = await page.evaluate(() => window.srcodecViewer.refinements.at(-1).image);
+  writeFileSync(join(output, 'viewer-cube.png'), Buffer.from(image.split(',')[1], 'base64'));
+  assert.ok(state.refinements.at(-1).coverage > 0.05, 'the cube is drawn');
   assert.deepEqual(errors, []);
   await page.close();
 });

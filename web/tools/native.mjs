@@ -33,17 +33,27 @@ export function nativeDecode(srmPath, { level = -1, bytes = 0 } = {}) {
   }
 }
 
-// The vertices and triangles of an OBJ that `srcodec decode` wrote.
+// The vertices and triangles of an OBJ that `srcodec decode` wrote, and its
+// normals (`vn`) and each corner's normal (`f v//vn`), empty when it has none.
 export function parseObj(text) {
   const positions = [];
   const indices = [];
+  const normals = [];
+  const normalIndices = [];
   for (const line of text.split('\n')) {
-    if (line.startsWith('v ')) {
+    if (line.startsWith('v ') || line.startsWith('vn ')) {
       const [, x, y, z] = line.trim().split(/\s+/);
-      positions.push(Number(x), Number(y), Number(z));
+      (line[1] === 'n' ? normals : positions).push(Number(x), Number(y), Number(z));
     } else if (line.startsWith('f ')) {
-      for (const corner of line.trim().split(/\s+/).slice(1)) indices.push(Number(corner.split('/')[0]) - 1);
+      for (const corner of line.trim().split(/\s+/).slice(1)) {
+        const [v, , n] = corner.split('/');
+        indices.push(Number(v) - 1);
+        if (n !== undefined) normalIndices.push(Number(n) - 1);
+      }
     }
   }
-  return { positions: Float64Array.from(positions), indices: Uint32Array.from(indices) };
+  return {
+    positions: Float64Array.from(positions), indices: Uint32Array.from(indices),
+    normals: Float64Array.from(normals), normalIndices: Uint32Array.from(normalIndices),
+  };
 }

@@ -19,8 +19,9 @@ let maxVertices;
 const messageOf = (error) => String(error?.message ?? error).replace(/^srcodec: /, '');
 
 function postMesh(type, mesh, extra) {
-  const { positions, indices, ...numbers } = mesh;
-  postMessage({ type, mesh: { positions, indices, ...numbers }, ...extra }, [positions.buffer, indices.buffer]);
+  const { positions, indices, cornerNormals, ...numbers } = mesh;
+  const arrays = [positions, indices, ...(cornerNormals ? Object.values(cornerNormals) : [])];
+  postMessage({ type, mesh: { positions, indices, cornerNormals, ...numbers }, ...extra }, arrays.map((a) => a.buffer));
 }
 
 async function open({ url, file, maxVertices: limit }) {
@@ -60,6 +61,7 @@ async function open({ url, file, maxVertices: limit }) {
     };
     progressive = new ProgressiveDecoder(decoder, {
       maxVertices,
+      cornerNormals: true,  // the page draws normals split at the creases, if any
       onRefine: (mesh, event) => {
         postHeader();
         postMesh('refine', mesh, { bytesReceived: event.bytesReceived, milliseconds: event.milliseconds });
@@ -102,7 +104,7 @@ async function open({ url, file, maxVertices: limit }) {
 function prefix({ maxBytes, id }) {
   const started = performance.now();
   try {
-    const mesh = decoder.decode(progressive.bytes, { maxBytes, maxVertices });
+    const mesh = decoder.decode(progressive.bytes, { maxBytes, maxVertices, cornerNormals: true });
     postMesh('prefixed', mesh, { id, maxBytes, milliseconds: performance.now() - started });
   } catch (error) {
     postMessage({ type: 'prefixed', id, maxBytes, error: messageOf(error) });

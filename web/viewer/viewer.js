@@ -19,11 +19,13 @@
 //   received     refinements that came from the decoder (drawn or collapsed)
 //   error        why the file did not (wholly) decode, or null
 //   message, messageKind   the text shown in the panel, and 'info' | 'warning' | 'error'
-//   lastMesh     { positions, indices, level, bytesUsed } of the mesh on screen
+//   lastMesh     { positions, indices, level, bytesUsed, cornerNormals, drawnVertices } of the mesh on
+//                screen (cornerNormals: decode's, for a file with creases; drawnVertices: the geometry's)
 //   prefix       after a slider move: { maxBytes, level, triangles, milliseconds, error } (pending: null)
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { DEFAULT_MAX_VERTICES, MAX_VERTICES_LIMIT } from 'srcodec';
+import { meshGeometry } from 'srcodec/three';
 
 const BACKGROUND = 0x1e2329;
 const params = new URLSearchParams(location.search);
@@ -114,16 +116,17 @@ function onFrame() {
 }
 
 // Replaces the drawn geometry; .srm files carry no normals, so they are
-// computed (smooth; the flat-shading switch lets the material derive them).
+// computed (smooth but split at the file's creases; the flat-shading switch
+// lets the material derive them).
 function showMesh(mesh) {
-  const geometry = new THREE.BufferGeometry();
-  geometry.setAttribute('position', new THREE.BufferAttribute(mesh.positions, 3));
-  geometry.setIndex(new THREE.BufferAttribute(mesh.indices, 1));
-  geometry.computeVertexNormals();
+  const geometry = meshGeometry(mesh);
   const old = object.geometry;
   object.geometry = geometry;
   old.dispose();
-  state.lastMesh = { positions: mesh.positions, indices: mesh.indices, level: mesh.level, bytesUsed: mesh.bytesUsed };
+  state.lastMesh = {
+    positions: mesh.positions, indices: mesh.indices, level: mesh.level, bytesUsed: mesh.bytesUsed,
+    cornerNormals: mesh.cornerNormals, drawnVertices: geometry.getAttribute('position').count,
+  };
   ui.level.textContent = levelText(mesh.level);
   ui.triangles.textContent = mesh.triangleCount.toLocaleString('en');
 }

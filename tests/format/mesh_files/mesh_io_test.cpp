@@ -42,6 +42,33 @@ TEST(MeshIo, ObjAndPlyRoundTripExactly) {
   }
 }
 
+// The OBJ writer's text, to the byte: without normals (what `srcodec decode`
+// writes for files without creases), and with a normal per sector.
+TEST(MeshIo, ObjTextWithAndWithoutNormals) {
+  ScratchDir dir;
+  TriangleMesh m = test::tetrahedron();
+  m.positions[3].z() = 0.1;  // not a float: written as a double
+  ASSERT_TRUE(write_mesh(m, dir.file("plain.obj")).ok());
+  EXPECT_EQ(read_file_bytes(dir.file("plain.obj")).value(),
+            "# written by srcodec\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 0.1\n"
+            "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+  SectorNormals n;
+  n.normals = {{0, 0, -1}, {0, -1, 0}, {0.6f, 0.8f, 0}};
+  n.vertex = {0, 1, 2};
+  n.corners = {{0, 0, 0}, {1, 1, 1}, {2, 2, 2}, {0, 1, 2}};
+  ASSERT_TRUE(write_mesh(m, dir.file("normals.obj"), &n).ok());
+  EXPECT_EQ(read_file_bytes(dir.file("normals.obj")).value(),
+            "# written by srcodec\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 0.1\nvn 0 0 -1\nvn 0 -1 0\nvn 0.6 0.8 0\n"
+            "f 1//1 3//1 2//1\nf 1//2 2//2 4//2\nf 1//3 4//3 3//3\nf 2//1 3//2 4//3\n");
+  // The other formats have no normals per corner: the same bytes without.
+  for (const char* name : {"m.ply", "m.off", "m.stl"}) {
+    ASSERT_TRUE(write_mesh(m, dir.file(std::string("a_") + name)).ok());
+    ASSERT_TRUE(write_mesh(m, dir.file(std::string("b_") + name), &n).ok());
+    EXPECT_EQ(read_file_bytes(dir.file(std::string("a_") + name)).value(),
+              read_file_bytes(dir.file(std::string("b_") + name)).value()) << name;
+  }
+}
+
 TEST(MeshIo, StlRoundTripsToFloatPrecision) {
   const TriangleMesh sphere = test::icosphere(2, 0.37);
   ScratchDir dir;

@@ -4,9 +4,9 @@
 import * as THREE from 'three';
 import {
   createDecoder, decodeStream, ProgressiveDecoder, DEFAULT_MAX_VERTICES,
-  type DecodedMesh, type FileInfo, type StreamResult,
+  type CornerNormals, type DecodedMesh, type FileInfo, type StreamResult,
 } from 'srcodec';
-import { SRMLoader } from 'srcodec/three';
+import { meshGeometry, SRMLoader } from 'srcodec/three';
 
 export async function use(bytes: Uint8Array, response: Response): Promise<number> {
   const decoder = await createDecoder({ wasm: new URL('./srcodec_decoder.wasm', 'https://example.com/') });
@@ -17,8 +17,14 @@ export async function use(bytes: Uint8Array, response: Response): Promise<number
   const firstDrawable: number = info.levelInfo[0].drawableFrom + info.planes.length;
   const sharp: Uint32Array = mesh.creaseEdges;
   const creases: number = (info.creaseEdges ?? 0) + info.creaseBytes + (mesh.creasesCut ? 1 : 0);
+  const split: CornerNormals | null = decoder.decode(bytes, { cornerNormals: true }).cornerNormals;
+  const normals: number = split === null ? 0 : split.normals.length + split.vertices.length + split.corners.length;
+  const geometry: THREE.BufferGeometry = meshGeometry(mesh);
+  const vertexOf: Uint32Array | null = geometry.userData.srcodec?.meshVertices ?? null;
 
-  const progressive = new ProgressiveDecoder(decoder, { everyBytes: 1 << 16, onRefine: (m, e) => m.level + e.bytesReceived });
+  const progressive = new ProgressiveDecoder(decoder, {
+    everyBytes: 1 << 16, cornerNormals: true, onRefine: (m, e) => m.level + e.bytesReceived,
+  });
   progressive.push(bytes.subarray(0, 100));
   const last: DecodedMesh = progressive.end();
 
@@ -34,5 +40,6 @@ export async function use(bytes: Uint8Array, response: Response): Promise<number
   const shown = new THREE.Mesh(new THREE.BufferGeometry(), material);
   loader.load('bunny.srm', (geometry) => { shown.geometry = geometry; }, (event) => event.loaded / event.total,
     (error) => error.geometry?.dispose(), (geometry, event) => geometry.userData.srcodec.level + event.milliseconds);
-  return positions.length + indices.length + firstDrawable + last.level + (why?.length ?? 0) + sharp.length + creases;
+  return positions.length + indices.length + firstDrawable + last.level + (why?.length ?? 0) + sharp.length + creases +
+    normals + (vertexOf?.length ?? 0);
 }
