@@ -20,7 +20,7 @@ Status write_mesh(const std::string& path, const Mesh& mesh) {
 Status write_mesh(const std::string& path, const Mesh& mesh, const std::vector<uint32_t>& crease_edges) {
   SRCODEC_ASSIGN_OR_RETURN(TriangleMesh m, from_public_mesh(mesh, "the mesh to write to " + path));
   SRCODEC_ASSIGN_OR_RETURN(const auto creases, crease_pairs(crease_edges, m.positions.size()));
-  if (creases.empty() || file_extension(path) != ".obj") return write_mesh(m, path);
+  if (creases.empty() || !keeps_corner_normals(path)) return write_mesh(m, path);
   const SectorNormals normals = crease_normals(m, creases);
   return write_mesh(m, path, &normals);
 }

@@ -209,6 +209,8 @@ std::string stl_bytes(const TriangleMesh& mesh) {
 
 }  // namespace
 
+bool keeps_corner_normals(const std::string& path) { return file_extension(path) == ".obj"; }
+
 Status write_mesh(const TriangleMesh& mesh, const std::string& path, const SectorNormals* normals) {
   const std::string ext = file_extension(path);
   std::string bytes;

@@ -30,6 +30,10 @@ StatusOr<TriangleMesh> read_triangle_mesh(const std::string& path, CleanReport* 
 // and are written without them.
 Status write_mesh(const TriangleMesh& mesh, const std::string& path, const SectorNormals* normals = nullptr);
 
+// Whether write_mesh writes the normals it is given to a file at `path`
+// (by its extension: OBJ only).
+bool keeps_corner_normals(const std::string& path);
+
 // Lower-case extension with its dot (".obj"), or "" if none.
 std::string file_extension(const std::string& path);
 

@@ -42,7 +42,7 @@ Status run_decode(const DecodeCliOptions& o) {
   SRCODEC_ASSIGN_OR_RETURN(const FileInfo info, inspect(data, bytes.size()));
   SRCODEC_RETURN_IF_ERROR(write_mesh(o.output, decoded->mesh, decoded->crease_edges));
   const uint64_t present = o.bytes > 0 ? std::min<uint64_t>(o.bytes, bytes.size()) : bytes.size();
-  const bool crease_normals = !decoded->crease_edges.empty() && file_extension(o.output) == ".obj";
+  const bool crease_normals = !decoded->crease_edges.empty() && keeps_corner_normals(o.output);
   if (o.json) {
     JsonWriter j;
     j.field("input", o.input)
